@@ -1,0 +1,12 @@
+# Writes every kernels/*.cl file into one C++ source as a name -> text table.
+file(GLOB files ${KERNEL_DIR}/*.cl)
+list(SORT files)
+set(body "// Generated from kernels/*.cl by cmake/embed_kernels.cmake; do not edit.\n#include \"embedded_kernels.hpp\"\nnamespace ssrcl::detail {\nconst std::vector<EmbeddedKernel>& embeddedKernels() {\n  static const std::vector<EmbeddedKernel> table = {\n")
+foreach(f ${files})
+  get_filename_component(name ${f} NAME)
+  file(READ ${f} text)
+  string(APPEND body "    {\"${name}\", R\"SSRCLCL(${text})SSRCLCL\"},\n")
+endforeach()
+string(APPEND body "  };\n  return table;\n}\n}  // namespace ssrcl::detail\n")
+file(WRITE ${OUT}.tmp "${body}")
+file(COPY_FILE ${OUT}.tmp ${OUT} ONLY_IF_DIFFERENT)

@@ -1,0 +1,189 @@
+#include "ssrcl/device.hpp"
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "device_impl.hpp"
+#include "embedded_kernels.hpp"
+
+namespace ssrcl {
+namespace detail {
+
+const char* clErrorName(cl_int code) {
+  switch (code) {
+#define SSRCL_CL_CASE(name) case name: return #name;
+    SSRCL_CL_CASE(CL_DEVICE_NOT_FOUND)
+    SSRCL_CL_CASE(CL_DEVICE_NOT_AVAILABLE)
+    SSRCL_CL_CASE(CL_COMPILER_NOT_AVAILABLE)
+    SSRCL_CL_CASE(CL_MEM_OBJECT_ALLOCATION_FAILURE)
+    SSRCL_CL_CASE(CL_OUT_OF_RESOURCES)
+    SSRCL_CL_CASE(CL_OUT_OF_HOST_MEMORY)
+    SSRCL_CL_CASE(CL_PROFILING_INFO_NOT_AVAILABLE)
+    SSRCL_CL_CASE(CL_BUILD_PROGRAM_FAILURE)
+    SSRCL_CL_CASE(CL_INVALID_VALUE)
+    SSRCL_CL_CASE(CL_INVALID_DEVICE)
+    SSRCL_CL_CASE(CL_INVALID_CONTEXT)
+    SSRCL_CL_CASE(CL_INVALID_COMMAND_QUEUE)
+    SSRCL_CL_CASE(CL_INVALID_MEM_OBJECT)
+    SSRCL_CL_CASE(CL_INVALID_BUFFER_SIZE)
+    SSRCL_CL_CASE(CL_INVALID_PROGRAM)
+    SSRCL_CL_CASE(CL_INVALID_PROGRAM_EXECUTABLE)
+    SSRCL_CL_CASE(CL_INVALID_KERNEL_NAME)
+    SSRCL_CL_CASE(CL_INVALID_KERNEL)
+    SSRCL_CL_CASE(CL_INVALID_ARG_INDEX)
+    SSRCL_CL_CASE(CL_INVALID_ARG_VALUE)
+    SSRCL_CL_CASE(CL_INVALID_ARG_SIZE)
+    SSRCL_CL_CASE(CL_INVALID_KERNEL_ARGS)
+    SSRCL_CL_CASE(CL_INVALID_WORK_DIMENSION)
+    SSRCL_CL_CASE(CL_INVALID_WORK_GROUP_SIZE)
+    SSRCL_CL_CASE(CL_INVALID_GLOBAL_WORK_SIZE)
+    SSRCL_CL_CASE(CL_INVALID_EVENT)
+    SSRCL_CL_CASE(CL_PLATFORM_NOT_FOUND_KHR)
+#undef SSRCL_CL_CASE
+    default: return "unknown OpenCL error";
+  }
+}
+
+void rethrowClError(const cl::Error& e, const std::string& context) {
+  cl_int code = e.err();
+  std::string message = context + ": " + e.what() + " failed with " + clErrorName(code) + " (" +
+                        std::to_string(code) + ")";
+  bool oom = code == CL_MEM_OBJECT_ALLOCATION_FAILURE || code == CL_OUT_OF_RESOURCES ||
+             code == CL_OUT_OF_HOST_MEMORY || code == CL_INVALID_BUFFER_SIZE;
+  throw Error(oom ? ErrorCode::OutOfMemory : ErrorCode::OpenCL, message);
+}
+
+}  // namespace detail
+
+namespace {
+
+struct Found {
+  DeviceInfo info;
+  cl::Device device;
+};
+
+std::vector<Found> enumerate() {
+  std::vector<Found> found;
+  std::vector<cl::Platform> platforms;
+  try {
+    cl::Platform::get(&platforms);
+  } catch (const cl::Error& e) {
+    // The ICD loader reports "no platform" as an error; for us it is simply an empty list.
+    if (e.err() == CL_PLATFORM_NOT_FOUND_KHR) return found;
+    throw;
+  }
+  for (const cl::Platform& platform : platforms) {
+    std::vector<cl::Device> devices;
+    try {
+      platform.getDevices(CL_DEVICE_TYPE_ALL, &devices);
+    } catch (const cl::Error&) {
+      continue;  // a platform with no devices is not an error either
+    }
+    for (const cl::Device& d : devices) {
+      Found f;
+      f.info.index = static_cast<int>(found.size());
+      f.info.platform = platform.getInfo<CL_PLATFORM_NAME>();
+      f.info.name = d.getInfo<CL_DEVICE_NAME>();
+      f.info.version = d.getInfo<CL_DEVICE_VERSION>();
+      f.info.isGpu = (d.getInfo<CL_DEVICE_TYPE>() & CL_DEVICE_TYPE_GPU) != 0;
+      f.info.globalMemory = d.getInfo<CL_DEVICE_GLOBAL_MEM_SIZE>();
+      f.info.computeUnits = static_cast<int>(d.getInfo<CL_DEVICE_MAX_COMPUTE_UNITS>());
+      f.device = d;
+      found.push_back(std::move(f));
+    }
+  }
+  return found;
+}
+
+std::vector<Found> enumerateOrThrow() {
+  try {
+    return enumerate();
+  } catch (const cl::Error& e) {
+    detail::rethrowClError(e, "listing OpenCL devices");
+  }
+}
+
+std::shared_ptr<Device::Impl> open(Found found) {
+  auto impl = std::make_shared<Device::Impl>();
+  try {
+    impl->info = std::move(found.info);
+    impl->device = found.device;
+    impl->context = cl::Context(impl->device);
+    impl->queue = cl::CommandQueue(impl->context, impl->device, CL_QUEUE_PROFILING_ENABLE);
+  } catch (const cl::Error& e) {
+    detail::rethrowClError(e, "opening OpenCL device '" + impl->info.name + "'");
+  }
+  return impl;
+}
+
+}  // namespace
+
+const cl::Program& Device::Impl::program() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (built_) return program_;
+  // common.cl holds the shared definitions every other file relies on, so it goes first.
+  std::string source;
+  for (const auto& k : detail::embeddedKernels())
+    if (std::string(k.name) == "common.cl") source += k.source;
+  for (const auto& k : detail::embeddedKernels())
+    if (std::string(k.name) != "common.cl") source += std::string("\n#line 1 \"") + k.name + "\"\n" + k.source;
+  try {
+    program_ = cl::Program(context, source);
+  } catch (const cl::Error& e) {
+    detail::rethrowClError(e, "creating the ssrcl OpenCL program");
+  }
+  try {
+    program_.build({device}, "-cl-std=CL1.2");
+  } catch (const cl::Error& e) {
+    std::string log;
+    try {
+      log = program_.getBuildInfo<CL_PROGRAM_BUILD_LOG>(device);
+    } catch (const cl::Error&) {
+      log = "(the driver gave no build log)";
+    }
+    throw Error(ErrorCode::KernelBuild,
+                "OpenCL kernels failed to build on '" + info.name + "': " + detail::clErrorName(e.err()), log);
+  }
+  built_ = true;
+  return program_;
+}
+
+std::vector<DeviceInfo> Device::list() {
+  std::vector<DeviceInfo> infos;
+  for (auto& f : enumerateOrThrow()) infos.push_back(f.info);
+  return infos;
+}
+
+Device::Device(DeviceType type) {
+  auto found = enumerateOrThrow();
+  if (found.empty())
+    throw Error(ErrorCode::NoDevice, "no OpenCL device found (is an OpenCL driver such as pocl-opencl-icd installed?)");
+  auto pick = [&](bool gpu) -> const Found* {
+    for (const auto& f : found)
+      if (f.info.isGpu == gpu) return &f;
+    return nullptr;
+  };
+  const Found* chosen = nullptr;
+  switch (type) {
+    case DeviceType::GPU: chosen = pick(true); break;
+    case DeviceType::CPU: chosen = pick(false); break;
+    case DeviceType::Default: chosen = pick(true) ? pick(true) : &found.front(); break;
+  }
+  if (!chosen)
+    throw Error(ErrorCode::NoDevice,
+                std::string("no OpenCL ") + (type == DeviceType::GPU ? "GPU" : "CPU") + " device found");
+  impl_ = open(*chosen);
+}
+
+Device::Device(int index) {
+  auto found = enumerateOrThrow();
+  if (index < 0 || index >= static_cast<int>(found.size()))
+    throw Error(ErrorCode::NoDevice, "no OpenCL device with index " + std::to_string(index) + " (" +
+                                         std::to_string(found.size()) + " found; see `ssrcl devices`)");
+  impl_ = open(found[index]);
+}
+
+const DeviceInfo& Device::info() const { return impl_->info; }
+
+}  // namespace ssrcl

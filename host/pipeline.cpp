@@ -1,0 +1,319 @@
+#include "ssrcl/pipeline.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <glm/gtc/matrix_inverse.hpp>
+
+#include "device_impl.hpp"
+#include "ssrcl/error.hpp"
+
+namespace ssrcl {
+namespace {
+
+constexpr std::array<const char*, 4> kInputNames = {"color", "depth", "normal", "roughness"};
+
+// Mirrors HzbLevel in kernels/common.cl.
+struct HzbLevel {
+  cl_int offset, width, height, pad;
+};
+
+cl_float16 toFloat16RowMajor(const glm::dmat4& m) {
+  cl_float16 out;
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) out.s[r * 4 + c] = static_cast<float>(m[c][r]);  // glm is column-major
+  return out;
+}
+
+std::vector<HzbLevel> hzbLevels(int width, int height) {
+  std::vector<HzbLevel> levels;
+  int offset = 0, w = width, h = height;
+  for (;;) {
+    levels.push_back({offset, w, h, 0});
+    offset += w * h;
+    if (w == 1 && h == 1) break;
+    w = (w + 1) / 2;
+    h = (h + 1) / 2;
+  }
+  return levels;
+}
+
+size_t roundUp(size_t n, size_t multiple) { return (n + multiple - 1) / multiple * multiple; }
+
+double eventMs(const cl::Event& e) {
+  auto start = e.getProfilingInfo<CL_PROFILING_COMMAND_START>();
+  auto end = e.getProfilingInfo<CL_PROFILING_COMMAND_END>();
+  return (end - start) * 1e-6;
+}
+
+}  // namespace
+
+struct Pipeline::Impl {
+  Device device;
+  std::map<std::string, const Image*> inputs;
+  Camera camera;
+  bool hasCamera = false;
+  TraceSettings settings;
+
+  bool committed = false;
+  int width = 0, height = 0, colorChannels = 0;
+  std::vector<HzbLevel> levels;
+
+  cl::Kernel setup, hzbReduce, trace, resolve;
+  cl::Buffer colorIn, depthIn, normalIn, roughnessIn;
+  cl::Buffer hzb, levelBuffer, normals, color, rayList, rayCount, hits, outRgba, outDistance;
+
+  Image reflection, distance;
+  StageTimes times;
+
+  explicit Impl(const Device& d) : device(d) {}
+
+  void validate();
+  void allocate();
+  void run();
+  cl::CommandQueue& queue() { return device.impl().queue; }
+};
+
+Pipeline::Pipeline(const Device& device) : impl_(std::make_unique<Impl>(device)) {}
+Pipeline::~Pipeline() = default;
+Pipeline::Pipeline(Pipeline&&) noexcept = default;
+Pipeline& Pipeline::operator=(Pipeline&&) noexcept = default;
+
+void Pipeline::setImage(const std::string& name, const Image& image) {
+  if (std::find(kInputNames.begin(), kInputNames.end(), name) == kInputNames.end())
+    throw Error(ErrorCode::InvalidArgument, "unknown input image '" + name + "' (expected color, depth, normal or roughness)");
+  impl_->inputs[name] = &image;
+  impl_->committed = false;
+}
+
+void Pipeline::setCamera(const Camera& camera) {
+  impl_->camera = camera;
+  impl_->hasCamera = true;
+  impl_->committed = false;
+}
+
+TraceSettings& Pipeline::settings() { return impl_->settings; }
+
+void Pipeline::Impl::validate() {
+  if (!hasCamera) throw Error(ErrorCode::InvalidArgument, "pipeline: no camera set");
+  validateCamera(camera, "camera");
+  const TraceSettings& s = settings;
+  if (!(s.thicknessRelative > 0.0f) || !std::isfinite(s.thicknessRelative))
+    throw Error(ErrorCode::InvalidArgument, "parameter thickness must be a positive number");
+  if (s.maxIterations < 1) throw Error(ErrorCode::InvalidArgument, "parameter max-iterations must be at least 1");
+  if (!(s.maxRoughness >= 0.0f)) throw Error(ErrorCode::InvalidArgument, "parameter max-roughness must be >= 0");
+  if (!(s.edgeFade >= 0.0f && s.edgeFade <= 0.5f))
+    throw Error(ErrorCode::InvalidArgument, "parameter edge-fade must be in [0, 0.5]");
+  if (std::isnan(s.constantRoughness)) throw Error(ErrorCode::InvalidArgument, "parameter roughness is NaN");
+
+  const bool needRoughness = s.constantRoughness < 0.0f;
+  const std::array<int, 4> expectedChannels = {3, 1, 3, 1};
+  for (size_t k = 0; k < kInputNames.size(); ++k) {
+    const std::string name = kInputNames[k];
+    auto it = inputs.find(name);
+    if (it == inputs.end() || it->second->empty()) {
+      if (name == "roughness" && !needRoughness) continue;
+      throw Error(ErrorCode::InvalidArgument, "pipeline: input image '" + name + "' not set");
+    }
+    const Image& img = *it->second;
+    bool channelsOk = name == "color" ? (img.channels == 3 || img.channels == 4) : img.channels == expectedChannels[k];
+    if (!channelsOk)
+      throw Error(ErrorCode::InvalidArgument, "pipeline: input image '" + name + "' has " +
+                                                  std::to_string(img.channels) + " channels");
+    if (img.width != camera.width || img.height != camera.height)
+      throw Error(ErrorCode::InvalidInput, "pipeline: input image '" + name + "' is " + std::to_string(img.width) +
+                                               "x" + std::to_string(img.height) + " but the camera is " +
+                                               std::to_string(camera.width) + "x" + std::to_string(camera.height));
+    if (img.data.size() != size_t(img.width) * img.height * img.channels)
+      throw Error(ErrorCode::InvalidArgument, "pipeline: input image '" + name + "' data size does not match its shape");
+  }
+}
+
+void Pipeline::Impl::allocate() {
+  const cl::Program& program = device.impl().program();
+  const cl::Context& ctx = device.impl().context;
+  width = camera.width;
+  height = camera.height;
+  colorChannels = inputs.at("color")->channels;
+  levels = hzbLevels(width, height);
+  const size_t pixels = size_t(width) * height;
+  const size_t hzbSize = size_t(levels.back().offset) + 1;
+
+  setup = cl::Kernel(program, "setup");
+  hzbReduce = cl::Kernel(program, "hzb_reduce");
+  trace = cl::Kernel(program, "trace_mirror");
+  resolve = cl::Kernel(program, "resolve_mirror");
+
+  auto buffer = [&](cl_mem_flags flags, size_t bytes) { return cl::Buffer(ctx, flags, std::max<size_t>(bytes, 4)); };
+  colorIn = buffer(CL_MEM_READ_ONLY, pixels * colorChannels * sizeof(float));
+  depthIn = buffer(CL_MEM_READ_ONLY, pixels * sizeof(float));
+  normalIn = buffer(CL_MEM_READ_ONLY, pixels * 3 * sizeof(float));
+  roughnessIn = buffer(CL_MEM_READ_ONLY, pixels * sizeof(float));
+  hzb = buffer(CL_MEM_READ_WRITE, hzbSize * sizeof(float));
+  levelBuffer = cl::Buffer(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, levels.size() * sizeof(HzbLevel), levels.data());
+  normals = buffer(CL_MEM_READ_WRITE, pixels * sizeof(cl_float4));
+  color = buffer(CL_MEM_READ_WRITE, pixels * sizeof(cl_float4));
+  rayList = buffer(CL_MEM_READ_WRITE, pixels * sizeof(cl_int));
+  rayCount = buffer(CL_MEM_READ_WRITE, sizeof(cl_int));
+  hits = buffer(CL_MEM_READ_WRITE, pixels * sizeof(cl_float4));
+  outRgba = buffer(CL_MEM_WRITE_ONLY, pixels * sizeof(cl_float4));
+  outDistance = buffer(CL_MEM_WRITE_ONLY, pixels * sizeof(float));
+  reflection = Image(width, height, 4);
+  distance = Image(width, height, 1);
+}
+
+void Pipeline::commit() {
+  impl_->validate();
+  try {
+    impl_->allocate();
+  } catch (const cl::Error& e) {
+    detail::rethrowClError(e, "allocating device buffers for " + std::to_string(impl_->camera.width) + "x" +
+                                  std::to_string(impl_->camera.height));
+  }
+  impl_->committed = true;
+}
+
+void Pipeline::Impl::run() {
+  cl::CommandQueue& q = queue();
+  const size_t pixels = size_t(width) * height;
+  const cl_int2 size = {{width, height}};
+  const cl::NDRange local2d(8, 8);
+  const cl::NDRange global2d(roundUp(width, 8), roundUp(height, 8));
+
+  // Normals go to view space with the inverse transpose, which stays right for scaled views.
+  const glm::dmat3 normalMatrix = glm::inverseTranspose(glm::dmat3(camera.view));
+  const cl_float16 normalMatrix16 = toFloat16RowMajor(glm::dmat4(normalMatrix));
+  const cl_float16 proj = toFloat16RowMajor(camera.projection);
+  const cl_float16 invProj = toFloat16RowMajor(glm::inverse(camera.projection));
+  const float nearPlane = static_cast<float>(camera.nearPlane);
+  const float farPlane = std::isfinite(camera.farPlane) ? static_cast<float>(std::min(camera.farPlane, 3.0e38))
+                                                         : std::numeric_limits<float>::max();
+
+  std::vector<cl::Event> uploads(5);
+  const bool useRoughnessImage = settings.constantRoughness < 0.0f;
+  q.enqueueWriteBuffer(colorIn, CL_FALSE, 0, pixels * colorChannels * sizeof(float), inputs.at("color")->data.data(), nullptr, &uploads[0]);
+  q.enqueueWriteBuffer(depthIn, CL_FALSE, 0, pixels * sizeof(float), inputs.at("depth")->data.data(), nullptr, &uploads[1]);
+  q.enqueueWriteBuffer(normalIn, CL_FALSE, 0, pixels * 3 * sizeof(float), inputs.at("normal")->data.data(), nullptr, &uploads[2]);
+  const cl_int zero = 0;
+  q.enqueueFillBuffer(rayCount, zero, 0, sizeof(cl_int), nullptr, &uploads[3]);
+  q.enqueueFillBuffer(hits, cl_float4{{0, 0, 0, 0}}, 0, pixels * sizeof(cl_float4), nullptr, &uploads[4]);
+  if (useRoughnessImage) {
+    uploads.emplace_back();
+    q.enqueueWriteBuffer(roughnessIn, CL_FALSE, 0, pixels * sizeof(float), inputs.at("roughness")->data.data(), nullptr, &uploads.back());
+  }
+
+  int a = 0;
+  setup.setArg(a++, size);
+  setup.setArg(a++, nearPlane);
+  setup.setArg(a++, farPlane);
+  setup.setArg(a++, normalMatrix16);
+  setup.setArg(a++, colorIn);
+  setup.setArg(a++, colorChannels);
+  setup.setArg(a++, depthIn);
+  setup.setArg(a++, normalIn);
+  setup.setArg(a++, roughnessIn);
+  setup.setArg(a++, useRoughnessImage ? -1.0f : settings.constantRoughness);
+  setup.setArg(a++, settings.maxRoughness);
+  setup.setArg(a++, hzb);  // HZB level 0 starts at offset 0
+  setup.setArg(a++, normals);
+  setup.setArg(a++, color);
+  setup.setArg(a++, rayList);
+  setup.setArg(a++, rayCount);
+  cl::Event setupEvent;
+  q.enqueueNDRangeKernel(setup, cl::NullRange, global2d, local2d, nullptr, &setupEvent);
+
+  std::vector<cl::Event> hzbEvents(levels.size() - 1);
+  for (size_t l = 1; l < levels.size(); ++l) {
+    hzbReduce.setArg(0, hzb);
+    hzbReduce.setArg(1, levelBuffer);
+    hzbReduce.setArg(2, static_cast<cl_int>(l));
+    q.enqueueNDRangeKernel(hzbReduce, cl::NullRange, cl::NDRange(roundUp(levels[l].width, 8), roundUp(levels[l].height, 8)),
+                           local2d, nullptr, &hzbEvents[l - 1]);
+  }
+
+  cl_int rays = 0;
+  q.enqueueReadBuffer(rayCount, CL_TRUE, 0, sizeof(cl_int), &rays);
+  times.tracedRays = rays;
+
+  cl::Event traceEvent;
+  if (rays > 0) {
+    a = 0;
+    trace.setArg(a++, size);
+    trace.setArg(a++, proj);
+    trace.setArg(a++, invProj);
+    trace.setArg(a++, nearPlane);
+    trace.setArg(a++, farPlane);
+    trace.setArg(a++, hzb);
+    trace.setArg(a++, levelBuffer);
+    trace.setArg(a++, static_cast<cl_int>(levels.size()));
+    trace.setArg(a++, normals);
+    trace.setArg(a++, rayList);
+    trace.setArg(a++, rays);
+    trace.setArg(a++, settings.thicknessRelative);
+    trace.setArg(a++, settings.maxIterations);
+    trace.setArg(a++, hits);
+    q.enqueueNDRangeKernel(trace, cl::NullRange, cl::NDRange(roundUp(rays, 64)), cl::NDRange(64), nullptr, &traceEvent);
+  }
+
+  a = 0;
+  resolve.setArg(a++, size);
+  resolve.setArg(a++, settings.edgeFade);
+  resolve.setArg(a++, hits);
+  resolve.setArg(a++, color);
+  resolve.setArg(a++, outRgba);
+  resolve.setArg(a++, outDistance);
+  cl::Event resolveEvent;
+  q.enqueueNDRangeKernel(resolve, cl::NullRange, global2d, local2d, nullptr, &resolveEvent);
+
+  std::vector<cl::Event> downloads(2);
+  q.enqueueReadBuffer(outRgba, CL_FALSE, 0, pixels * sizeof(cl_float4), reflection.data.data(), nullptr, &downloads[0]);
+  q.enqueueReadBuffer(outDistance, CL_FALSE, 0, pixels * sizeof(float), distance.data.data(), nullptr, &downloads[1]);
+  q.finish();
+
+  auto sum = [](const std::vector<cl::Event>& events) {
+    double ms = 0;
+    for (const auto& e : events) ms += eventMs(e);
+    return ms;
+  };
+  times.ms.clear();
+  times.ms["upload"] = sum(uploads);
+  times.ms["setup"] = eventMs(setupEvent);
+  times.ms["hzb"] = sum(hzbEvents);
+  times.ms["trace"] = rays > 0 ? eventMs(traceEvent) : 0.0;
+  times.ms["resolve"] = eventMs(resolveEvent);
+  times.ms["download"] = sum(downloads);
+}
+
+void Pipeline::execute() {
+  if (!impl_->committed) throw Error(ErrorCode::InvalidArgument, "pipeline: execute() before commit()");
+  try {
+    impl_->run();
+  } catch (const cl::Error& e) {
+    detail::rethrowClError(e, "executing the SSR pipeline");
+  }
+}
+
+const Image& Pipeline::output(const std::string& name) const {
+  if (name == "reflection") return impl_->reflection;
+  if (name == "distance") return impl_->distance;
+  throw Error(ErrorCode::InvalidArgument, "unknown output image '" + name + "' (expected reflection or distance)");
+}
+
+const StageTimes& Pipeline::stageTimes() const { return impl_->times; }
+
+std::vector<Image> Pipeline::readHzb() const {
+  if (!impl_->committed) throw Error(ErrorCode::InvalidArgument, "pipeline: readHzb() before commit()");
+  std::vector<Image> mips;
+  try {
+    for (const HzbLevel& l : impl_->levels) {
+      mips.emplace_back(l.width, l.height, 1);
+      impl_->queue().enqueueReadBuffer(impl_->hzb, CL_TRUE, l.offset * sizeof(float), mips.back().data.size() * sizeof(float),
+                                       mips.back().data.data());
+    }
+  } catch (const cl::Error& e) {
+    detail::rethrowClError(e, "reading the HZB");
+  }
+  return mips;
+}
+
+}  // namespace ssrcl

@@ -1,0 +1,41 @@
+#pragma once
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace ssrcl {
+
+enum class DeviceType { Default, CPU, GPU };
+
+struct DeviceInfo {
+  int index = 0;  // global index across all platforms, as `ssrcl devices` lists it
+  std::string platform;
+  std::string name;
+  std::string version;
+  bool isGpu = false;
+  unsigned long long globalMemory = 0;
+  int computeUnits = 0;
+};
+
+// An OpenCL device with its context, profiling queue and compiled-program cache.
+// Like an OIDN device: create once, share among pipelines, cheap to copy (shared handle).
+class Device {
+ public:
+  // Every device of every platform, in a stable order. Empty (not an error) when none.
+  static std::vector<DeviceInfo> list();
+
+  // The preferred device of a type: GPU first for Default, else the first CPU.
+  explicit Device(DeviceType type = DeviceType::Default);
+  // The device with a global index from list(); throws Error(NoDevice) when out of range.
+  explicit Device(int index);
+
+  const DeviceInfo& info() const;
+
+  struct Impl;
+  Impl& impl() const { return *impl_; }
+
+ private:
+  std::shared_ptr<Impl> impl_;
+};
+
+}  // namespace ssrcl

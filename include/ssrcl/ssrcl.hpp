@@ -1,0 +1,8 @@
+#pragma once
+// Umbrella header: the whole public API.
+#include "ssrcl/camera.hpp"
+#include "ssrcl/device.hpp"
+#include "ssrcl/error.hpp"
+#include "ssrcl/image.hpp"
+#include "ssrcl/io.hpp"
+#include "ssrcl/pipeline.hpp"

@@ -1,0 +1,43 @@
+// Shared definitions for every ssrcl kernel. The host concatenates this file before the others.
+//
+// Conventions: pixel (x, y) covers [x, x+1) x [y, y+1), y = 0 is the top row. Matrices are
+// float16 in row-major order (s0123 = first row) and act on column vectors. Depth is planar
+// view depth (positive in front of the camera); SSRCL_NO_SURFACE marks sky and invalid pixels.
+
+#define SSRCL_NO_SURFACE FLT_MAX
+
+// One HZB level: offset into the packed mip buffer and its size.
+typedef struct {
+  int offset;
+  int width;
+  int height;
+  int pad;
+} HzbLevel;
+
+inline float4 mat_mul(float16 m, float4 v) {
+  return (float4)(dot(m.s0123, v), dot(m.s4567, v), dot(m.s89ab, v), dot(m.scdef, v));
+}
+
+inline float3 mat3_mul(float16 m, float3 v) {
+  return (float3)(dot(m.s012, v), dot(m.s456, v), dot(m.s89a, v));
+}
+
+// Camera-space point on the line through NDC (x, y) at NDC depth z.
+inline float3 unproject(float16 inv_proj, float2 ndc, float z) {
+  float4 h = mat_mul(inv_proj, (float4)(ndc, z, 1.0f));
+  return h.xyz / h.w;
+}
+
+inline float2 pixel_to_ndc(float2 pixel, int2 size) {
+  return (float2)(2.0f * pixel.x / (float)size.x - 1.0f, 1.0f - 2.0f * pixel.y / (float)size.y);
+}
+
+inline float2 ndc_to_pixel(float2 ndc, int2 size) {
+  return (float2)((ndc.x + 1.0f) * 0.5f * (float)size.x, (1.0f - ndc.y) * 0.5f * (float)size.y);
+}
+
+inline float hzb_fetch(__global const float* hzb, __global const HzbLevel* levels, int level, int2 cell) {
+  HzbLevel l = levels[level];
+  cell = clamp(cell, (int2)(0, 0), (int2)(l.width - 1, l.height - 1));
+  return hzb[l.offset + cell.y * l.width + cell.x];
+}

@@ -1,0 +1,43 @@
+// Setup: turn the renderer's passes into what tracing needs, and list the pixels worth a ray.
+// Writes HZB level 0 (planar depth, SSRCL_NO_SURFACE for sky/invalid), view-space normals with
+// roughness in w, sanitized color, and appends traced pixels to ray_list.
+
+// Radiance rule: NaN becomes 0, negatives 0, and values clamp at 1e20 so that weighted sums
+// in later stages cannot overflow float.
+#define SSRCL_MAX_RADIANCE 1e20f
+
+inline float sanitize_radiance(float v) {
+  return isnan(v) ? 0.0f : clamp(v, 0.0f, SSRCL_MAX_RADIANCE);
+}
+
+__kernel void setup(int2 size, float near_plane, float far_plane, float16 normal_matrix,
+                    __global const float* color_in, int color_channels,
+                    __global const float* depth_in,
+                    __global const float* normal_in,
+                    __global const float* roughness_in, float constant_roughness,
+                    float max_roughness,
+                    __global float* depth_out, __global float4* normal_out, __global float4* color_out,
+                    __global int* ray_list, __global int* ray_count) {
+  int x = get_global_id(0), y = get_global_id(1);
+  if (x >= size.x || y >= size.y) return;
+  int i = y * size.x + x;
+
+  __global const float* c = color_in + (size_t)i * color_channels;
+  color_out[i] = (float4)(sanitize_radiance(c[0]), sanitize_radiance(c[1]), sanitize_radiance(c[2]), 1.0f);
+
+  float d = depth_in[i];
+  bool surface = isfinite(d) && d >= near_plane && d <= far_plane;
+
+  float3 nw = vload3(i, normal_in);
+  float3 nv = mat3_mul(normal_matrix, nw);
+  float len = length(nv);
+  bool normal_ok = isfinite(len) && len > 1e-20f;
+  nv = normal_ok ? nv / len : (float3)(0.0f, 0.0f, 1.0f);
+
+  float r = constant_roughness >= 0.0f ? constant_roughness : roughness_in[i];
+  r = isnan(r) ? 1.0f : clamp(r, 0.0f, 1.0f);
+
+  depth_out[i] = surface ? d : SSRCL_NO_SURFACE;
+  normal_out[i] = (float4)(nv, r);
+  if (surface && normal_ok && r <= max_roughness) ray_list[atomic_inc(ray_count)] = i;
+}

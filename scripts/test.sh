@@ -1,0 +1,8 @@
+#!/usr/bin/env bash
+# The README's second command: install what is needed, build, and run the whole test suite.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/install-deps.sh
+bash scripts/build.sh
+cd build
+ctest --output-on-failure -j"$(nproc)" --timeout 600
