@@ -1,6 +1,6 @@
 // Hierarchical Hi-Z trace of one mirror ray per listed pixel (FidelityFX SSSR style traversal).
 //
-// The ray is followed in screen space: pixel position s(t) = s0 + t * ds, t in [0, t_max].
+// The ray is followed in screen space: pixel position s(t) = s0 + t * ds, t in [0, 1].
 // Q = P / w and k = 1 / w are affine in screen space for any projective camera (perspective or
 // orthographic), so the ray's planar depth -Q.z / k at any t is exact, not interpolated.
 
@@ -32,8 +32,9 @@ inline float cell_exit(const ScreenRay* r, float t, float nudge, float cell_size
   return fmin(tb.x, tb.y);
 }
 
-// Screen ray for a view-space segment p0 -> p1; false when either end is behind the camera.
-inline bool make_screen_ray(float16 proj, int2 size, float3 p0, float3 p1, ScreenRay* r, float* t_max) {
+// Screen ray for a view-space segment p0 -> p1, clipped to the screen so that t in [0, 1] spans
+// its on-screen part; false when either end is behind the camera.
+inline bool make_screen_ray(float16 proj, int2 size, float3 p0, float3 p1, ScreenRay* r) {
   float4 h0 = mat_mul(proj, (float4)(p0, 1.0f));
   float4 h1 = mat_mul(proj, (float4)(p1, 1.0f));
   if (!(h0.w > 0.0f && h1.w > 0.0f)) return false;
@@ -46,7 +47,11 @@ inline bool make_screen_ray(float16 proj, int2 size, float3 p0, float3 p1, Scree
   float2 edge = select((float2)(0.0f), convert_float2(size), isgreater(r->ds, (float2)(0.0f)));
   float2 te = (edge - r->s0) / r->ds;
   te = select(te, (float2)(INFINITY), isless(fabs(r->ds), (float2)(1e-12f)));
-  *t_max = fmin(1.0f, fmin(te.x, te.y));
+  // The far end of a long segment can project millions of pixels away; rescaling keeps t's
+  // float resolution well under a pixel.
+  float t_max = fmin(1.0f, fmin(te.x, te.y));
+  r->ds *= t_max;
+  r->dq *= t_max;
   return isfinite(r->s0.x) && isfinite(r->s0.y) && isfinite(r->ds.x) && isfinite(r->ds.y);
 }
 
@@ -85,8 +90,7 @@ __kernel void trace_mirror(int2 size, float16 proj, float16 inv_proj, float near
   if (!(len > 0.0f)) return;
 
   ScreenRay ray;
-  float t_max;
-  if (!make_screen_ray(proj, size, p, p + dir * len, &ray, &t_max)) return;
+  if (!make_screen_ray(proj, size, p, p + dir * len, &ray)) return;
   float major = fmax(fabs(ray.ds.x), fabs(ray.ds.y));
   if (!(major > 0.0f)) return;
   float nudge = 0.01f / major;  // a hundredth of a pixel along the major axis
@@ -95,7 +99,7 @@ __kernel void trace_mirror(int2 size, float16 proj, float16 inv_proj, float near
   int2 cell;
   float t = cell_exit(&ray, 0.0f, nudge, 1.0f, &cell);  // leave the origin pixel first
   int mip = 0;
-  for (int iter = 0; iter < max_iterations && t <= t_max; ++iter) {
+  for (int iter = 0; iter < max_iterations && t <= 1.0f; ++iter) {
     float t_exit = cell_exit(&ray, t, nudge, (float)(1 << mip), &cell);
     float d_min = hzb_fetch(hzb, levels, mip, cell);
     float d_now = ray_depth(&ray, t);
@@ -108,7 +112,7 @@ __kernel void trace_mirror(int2 size, float16 proj, float16 inv_proj, float near
           --mip;
           continue;
         }
-        if (t_cross <= t_max && faces_ray(normals, size, cell, dir)) {
+        if (t_cross <= 1.0f && faces_ray(normals, size, cell, dir)) {
           t = fmax(t, t_cross);
           float2 s = ray.s0 + t * ray.ds;
           hits[i] = (float4)(s, length(ray_point(&ray, t) - p), 1.0f);
