@@ -10,6 +10,8 @@ inline float sanitize_radiance(float v) {
   return isnan(v) ? 0.0f : clamp(v, 0.0f, SSRCL_MAX_RADIANCE);
 }
 
+// Runs in 2D work-groups; traced pixels are counted in local memory first so the global ray
+// counter sees one atomic per group instead of one per pixel.
 __kernel void setup(int2 size, float near_plane, float far_plane, float16 normal_matrix,
                     __global const float* color_in, int color_channels,
                     __global const float* depth_in,
@@ -18,26 +20,38 @@ __kernel void setup(int2 size, float near_plane, float far_plane, float16 normal
                     float max_roughness,
                     __global float* depth_out, __global float4* normal_out, __global float4* color_out,
                     __global int* ray_list, __global int* ray_count) {
+  __local int group_count, group_base;
   int x = get_global_id(0), y = get_global_id(1);
-  if (x >= size.x || y >= size.y) return;
+  bool inside = x < size.x && y < size.y;
   int i = y * size.x + x;
+  bool traced = false;
+  if (inside) {
+    __global const float* c = color_in + (size_t)i * color_channels;
+    color_out[i] = (float4)(sanitize_radiance(c[0]), sanitize_radiance(c[1]), sanitize_radiance(c[2]), 1.0f);
 
-  __global const float* c = color_in + (size_t)i * color_channels;
-  color_out[i] = (float4)(sanitize_radiance(c[0]), sanitize_radiance(c[1]), sanitize_radiance(c[2]), 1.0f);
+    float d = depth_in[i];
+    bool surface = isfinite(d) && d >= near_plane && d <= far_plane;
 
-  float d = depth_in[i];
-  bool surface = isfinite(d) && d >= near_plane && d <= far_plane;
+    float3 nw = vload3(i, normal_in);
+    float3 nv = mat3_mul(normal_matrix, nw);
+    float len = length(nv);
+    bool normal_ok = isfinite(len) && len > 1e-20f;
+    nv = normal_ok ? nv / len : (float3)(0.0f, 0.0f, 1.0f);
 
-  float3 nw = vload3(i, normal_in);
-  float3 nv = mat3_mul(normal_matrix, nw);
-  float len = length(nv);
-  bool normal_ok = isfinite(len) && len > 1e-20f;
-  nv = normal_ok ? nv / len : (float3)(0.0f, 0.0f, 1.0f);
+    float r = constant_roughness >= 0.0f ? constant_roughness : roughness_in[i];
+    r = isnan(r) ? 1.0f : clamp(r, 0.0f, 1.0f);
 
-  float r = constant_roughness >= 0.0f ? constant_roughness : roughness_in[i];
-  r = isnan(r) ? 1.0f : clamp(r, 0.0f, 1.0f);
+    depth_out[i] = surface ? d : SSRCL_NO_SURFACE;
+    normal_out[i] = (float4)(nv, r);
+    traced = surface && normal_ok && r <= max_roughness;
+  }
 
-  depth_out[i] = surface ? d : SSRCL_NO_SURFACE;
-  normal_out[i] = (float4)(nv, r);
-  if (surface && normal_ok && r <= max_roughness) ray_list[atomic_inc(ray_count)] = i;
+  bool leader = get_local_id(0) == 0 && get_local_id(1) == 0;
+  if (leader) group_count = 0;
+  barrier(CLK_LOCAL_MEM_FENCE);
+  int slot = traced ? atomic_inc(&group_count) : 0;
+  barrier(CLK_LOCAL_MEM_FENCE);
+  if (leader) group_base = atomic_add(ray_count, group_count);
+  barrier(CLK_LOCAL_MEM_FENCE);
+  if (traced) ray_list[group_base + slot] = i;
 }

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "ssrcl/ssrcl.hpp"
+#include "support/test_device.hpp"
 
 namespace {
 
@@ -29,7 +30,7 @@ TEST(BlenderSample, FloorReflectionsMatchCycles) {
   ssrcl::Image glossDir = loadRgb("ViewLayer.GlossDir.R,ViewLayer.GlossDir.G,ViewLayer.GlossDir.B");
   ssrcl::Image glossInd = loadRgb("ViewLayer.GlossInd.R,ViewLayer.GlossInd.G,ViewLayer.GlossInd.B");
 
-  ssrcl::Device device(ssrcl::DeviceType::CPU);
+  ssrcl::Device device = ssrcl::test::testDevice();
   ssrcl::Pipeline p(device);
   p.setImage("color", g.color);
   p.setImage("depth", g.depth);

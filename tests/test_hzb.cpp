@@ -7,6 +7,7 @@
 #include <random>
 
 #include "ssrcl/ssrcl.hpp"
+#include "support/test_device.hpp"
 #include "support/simple_camera.hpp"
 
 namespace {
@@ -38,7 +39,7 @@ float expectedDepth(float d) { return (std::isfinite(d) && d >= 0.1f && d <= 100
 void checkPyramid(int w, int h) {
   SCOPED_TRACE(std::to_string(w) + "x" + std::to_string(h));
   Inputs in = randomInputs(w, h, unsigned(w * 7919 + h));
-  ssrcl::Device device(ssrcl::DeviceType::CPU);
+  ssrcl::Device device = ssrcl::test::testDevice();
   ssrcl::Pipeline p(device);
   p.setImage("color", in.color);
   p.setImage("depth", in.depth);
