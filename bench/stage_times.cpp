@@ -47,7 +47,8 @@ int main(int argc, char** argv) {
     std::cout << "device: " << device.info().name << "\nscene: " << sceneName << " " << width << "x" << height
               << ", rays traced: " << p.stageTimes().tracedRays << ", repetitions: " << repetitions << "\n"
               << std::left << std::setw(10) << "stage" << std::right << std::setw(12) << "min ms" << std::setw(12)
-              << "median ms" << "\n";
+              << "median ms"
+              << "\n";
     for (auto& [stage, v] : samples) {
       std::sort(v.begin(), v.end());
       std::cout << std::left << std::setw(10) << stage << std::right << std::fixed << std::setprecision(3)

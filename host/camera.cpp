@@ -1,10 +1,9 @@
 #include "ssrcl/camera.hpp"
 
 #include <cmath>
+#include <glm/glm.hpp>
 #include <sstream>
 #include <string>
-
-#include <glm/glm.hpp>
 
 #include "ssrcl/error.hpp"
 
@@ -72,8 +71,8 @@ void validateCamera(const Camera& camera, const char* what) {
   if (!(camera.nearPlane > 0.0 && std::isfinite(camera.nearPlane) && camera.farPlane > camera.nearPlane)) {
     std::ostringstream s;
     s.precision(17);
-    s << "near and far must satisfy 0 < near < far (got near=" << camera.nearPlane
-      << ", far=" << camera.farPlane << ")";
+    s << "near and far must satisfy 0 < near < far (got near=" << camera.nearPlane << ", far=" << camera.farPlane
+      << ")";
     fail(what, s.str());
   }
 }

@@ -3,9 +3,8 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
-#include <string>
-
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "ssrcl/error.hpp"
 #include "ssrcl/io.hpp"

@@ -12,7 +12,9 @@ namespace detail {
 
 const char* clErrorName(cl_int code) {
   switch (code) {
-#define SSRCL_CL_CASE(name) case name: return #name;
+#define SSRCL_CL_CASE(name) \
+  case name:                \
+    return #name;
     SSRCL_CL_CASE(CL_DEVICE_NOT_FOUND)
     SSRCL_CL_CASE(CL_DEVICE_NOT_AVAILABLE)
     SSRCL_CL_CASE(CL_COMPILER_NOT_AVAILABLE)
@@ -41,16 +43,17 @@ const char* clErrorName(cl_int code) {
     SSRCL_CL_CASE(CL_INVALID_EVENT)
     SSRCL_CL_CASE(CL_PLATFORM_NOT_FOUND_KHR)
 #undef SSRCL_CL_CASE
-    default: return "unknown OpenCL error";
+    default:
+      return "unknown OpenCL error";
   }
 }
 
 void rethrowClError(const cl::Error& e, const std::string& context) {
   cl_int code = e.err();
-  std::string message = context + ": " + e.what() + " failed with " + clErrorName(code) + " (" +
-                        std::to_string(code) + ")";
-  bool oom = code == CL_MEM_OBJECT_ALLOCATION_FAILURE || code == CL_OUT_OF_RESOURCES ||
-             code == CL_OUT_OF_HOST_MEMORY || code == CL_INVALID_BUFFER_SIZE;
+  std::string message =
+      context + ": " + e.what() + " failed with " + clErrorName(code) + " (" + std::to_string(code) + ")";
+  bool oom = code == CL_MEM_OBJECT_ALLOCATION_FAILURE || code == CL_OUT_OF_RESOURCES || code == CL_OUT_OF_HOST_MEMORY ||
+             code == CL_INVALID_BUFFER_SIZE;
   throw Error(oom ? ErrorCode::OutOfMemory : ErrorCode::OpenCL, message);
 }
 
@@ -166,9 +169,15 @@ Device::Device(DeviceType type) {
   };
   const Found* chosen = nullptr;
   switch (type) {
-    case DeviceType::GPU: chosen = pick(true); break;
-    case DeviceType::CPU: chosen = pick(false); break;
-    case DeviceType::Default: chosen = pick(true) ? pick(true) : &found.front(); break;
+    case DeviceType::GPU:
+      chosen = pick(true);
+      break;
+    case DeviceType::CPU:
+      chosen = pick(false);
+      break;
+    case DeviceType::Default:
+      chosen = pick(true) ? pick(true) : &found.front();
+      break;
   }
   if (!chosen)
     throw Error(ErrorCode::NoDevice,

@@ -4,13 +4,20 @@ namespace ssrcl {
 
 const char* errorCodeName(ErrorCode code) noexcept {
   switch (code) {
-    case ErrorCode::InvalidArgument: return "invalid argument";
-    case ErrorCode::InvalidInput: return "invalid input";
-    case ErrorCode::IoError: return "I/O error";
-    case ErrorCode::NoDevice: return "no device";
-    case ErrorCode::KernelBuild: return "kernel build failed";
-    case ErrorCode::OpenCL: return "OpenCL error";
-    case ErrorCode::OutOfMemory: return "out of memory";
+    case ErrorCode::InvalidArgument:
+      return "invalid argument";
+    case ErrorCode::InvalidInput:
+      return "invalid input";
+    case ErrorCode::IoError:
+      return "I/O error";
+    case ErrorCode::NoDevice:
+      return "no device";
+    case ErrorCode::KernelBuild:
+      return "kernel build failed";
+    case ErrorCode::OpenCL:
+      return "OpenCL error";
+    case ErrorCode::OutOfMemory:
+      return "out of memory";
   }
   return "unknown error";
 }

@@ -4,6 +4,12 @@
 // Images cover the data window (row 0 = its top row); the display window is ignored, so passes
 // line up by data-window-relative position and only their sizes have to agree.
 
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfInputPart.h>
+#include <OpenEXR/ImfMultiPartInputFile.h>
+
 #include <algorithm>
 #include <map>
 #include <memory>
@@ -11,12 +17,6 @@
 #include <string>
 #include <utility>
 #include <vector>
-
-#include <OpenEXR/ImfChannelList.h>
-#include <OpenEXR/ImfFrameBuffer.h>
-#include <OpenEXR/ImfHeader.h>
-#include <OpenEXR/ImfInputPart.h>
-#include <OpenEXR/ImfMultiPartInputFile.h>
 
 #include "ssrcl/error.hpp"
 #include "ssrcl/io.hpp"
@@ -135,15 +135,14 @@ struct Request {
 GBuffer loadGBuffer(const GBufferSource& source) {
   GBuffer gbuffer;
   std::vector<Pass> passes = {
-      {"color", &gbuffer.color, 3, source.colorFile, source.colorChannels,
-       "Combined.R,Combined.G,Combined.B", "R,G,B"},
+      {"color", &gbuffer.color, 3, source.colorFile, source.colorChannels, "Combined.R,Combined.G,Combined.B", "R,G,B"},
       {"depth", &gbuffer.depth, 1, source.depthFile, source.depthChannel, "Depth.Z", "Z"},
-      {"normal", &gbuffer.normal, 3, source.normalFile, source.normalChannels,
-       "Normal.X,Normal.Y,Normal.Z", "N.X,N.Y,N.Z"},
+      {"normal", &gbuffer.normal, 3, source.normalFile, source.normalChannels, "Normal.X,Normal.Y,Normal.Z",
+       "N.X,N.Y,N.Z"},
   };
   if (!source.constantRoughness)
-    passes.push_back({"roughness", &gbuffer.roughness, 1, source.roughnessFile, source.roughnessChannel,
-                      "roughness.X", "roughness"});
+    passes.push_back({"roughness", &gbuffer.roughness, 1, source.roughnessFile, source.roughnessChannel, "roughness.X",
+                      "roughness"});
 
   std::map<std::string, ExrFile> files;  // each file is opened once
   std::vector<Request> requests;
@@ -172,11 +171,11 @@ GBuffer loadGBuffer(const GBufferSource& source) {
                                                  " pass (has: " + file.listChannels() + ")");
       if (!requests.empty() && (ref.width != requests[0].ref.width || ref.height != requests[0].ref.height)) {
         const Request& other = requests[0];
-        throw Error(ErrorCode::InvalidInput,
-                    path + ": channel '" + names[c] + "' is " + std::to_string(ref.width) + "x" +
-                        std::to_string(ref.height) + " but " + other.file->path() + " channel '" + other.name +
-                        "' is " + std::to_string(other.ref.width) + "x" + std::to_string(other.ref.height) +
-                        "; all passes must have the same size");
+        throw Error(ErrorCode::InvalidInput, path + ": channel '" + names[c] + "' is " + std::to_string(ref.width) +
+                                                 "x" + std::to_string(ref.height) + " but " + other.file->path() +
+                                                 " channel '" + other.name + "' is " + std::to_string(other.ref.width) +
+                                                 "x" + std::to_string(other.ref.height) +
+                                                 "; all passes must have the same size");
       }
       requests.push_back({pass.image, c, &file, names[c], ref});
     }
@@ -192,16 +191,14 @@ GBuffer loadGBuffer(const GBufferSource& source) {
   std::map<std::pair<ExrFile*, int>, std::vector<Imf::FrameBuffer>> reads;
   for (const Request& request : requests) {
     auto& buffers = reads[{request.file, request.ref.part}];
-    auto buffer = std::find_if(buffers.begin(), buffers.end(), [&](const Imf::FrameBuffer& b) {
-      return b.findSlice(request.ref.name) == nullptr;
-    });
+    auto buffer = std::find_if(buffers.begin(), buffers.end(),
+                               [&](const Imf::FrameBuffer& b) { return b.findSlice(request.ref.name) == nullptr; });
     if (buffer == buffers.end()) buffer = buffers.emplace(buffers.end());
     Image& image = *request.image;
     const std::size_t xStride = sizeof(float) * image.channels;
-    buffer->insert(request.ref.name,
-                   Imf::Slice::Make(Imf::FLOAT, &image.data[request.channel],
-                                    request.file->file().header(request.ref.part).dataWindow(), xStride,
-                                    xStride * image.width));
+    buffer->insert(request.ref.name, Imf::Slice::Make(Imf::FLOAT, &image.data[request.channel],
+                                                      request.file->file().header(request.ref.part).dataWindow(),
+                                                      xStride, xStride * image.width));
   }
   for (const auto& read : reads) {
     ExrFile& file = *read.first.first;

@@ -1,3 +1,9 @@
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/ImfStdIO.h>
+
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
@@ -5,12 +11,6 @@
 #include <random>
 #include <stdexcept>
 #include <string>
-
-#include <OpenEXR/ImfChannelList.h>
-#include <OpenEXR/ImfFrameBuffer.h>
-#include <OpenEXR/ImfHeader.h>
-#include <OpenEXR/ImfOutputFile.h>
-#include <OpenEXR/ImfStdIO.h>
 
 #include "ssrcl/error.hpp"
 #include "ssrcl/io.hpp"
@@ -59,8 +59,10 @@ void writeReflectionExr(const std::string& path, const Image& rgba, const Image&
   if (!wellFormed(rgba, 4) || !wellFormed(distance, 1) || rgba.width != distance.width ||
       rgba.height != distance.height) {
     throw Error(ErrorCode::InvalidArgument,
-                path + ": reflection output needs a 4-channel colour and a 1-channel distance image of the same "
-                       "non-zero size (got " + std::to_string(rgba.width) + "x" + std::to_string(rgba.height) + "x" +
+                path +
+                    ": reflection output needs a 4-channel colour and a 1-channel distance image of the same "
+                    "non-zero size (got " +
+                    std::to_string(rgba.width) + "x" + std::to_string(rgba.height) + "x" +
                     std::to_string(rgba.channels) + " and " + std::to_string(distance.width) + "x" +
                     std::to_string(distance.height) + "x" + std::to_string(distance.channels) + ")");
   }
@@ -68,11 +70,12 @@ void writeReflectionExr(const std::string& path, const Image& rgba, const Image&
   const fs::path directory = target.parent_path().empty() ? fs::path(".") : target.parent_path();
   std::error_code ec;
   if (!fs::is_directory(directory, ec))
-    throw Error(ErrorCode::IoError, path + ": cannot write ('" + directory.string() + "' is not an existing directory)");
+    throw Error(ErrorCode::IoError,
+                path + ": cannot write ('" + directory.string() + "' is not an existing directory)");
 
   // A hidden sibling, so the rename stays on one file system and is atomic.
-  const fs::path temp = directory / ("." + target.filename().string() + ".tmp." +
-                                     std::to_string(std::random_device{}()) + ".exr");
+  const fs::path temp =
+      directory / ("." + target.filename().string() + ".tmp." + std::to_string(std::random_device{}()) + ".exr");
   try {
     writeExr(temp.string(), rgba, distance);
     fs::rename(temp, target, ec);

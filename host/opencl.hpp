@@ -2,7 +2,6 @@
 // The one place that configures the OpenCL C++ bindings for the library.
 #define CL_HPP_ENABLE_EXCEPTIONS
 #include <CL/opencl.hpp>
-
 #include <string>
 
 #include "ssrcl/error.hpp"

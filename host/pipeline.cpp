@@ -38,6 +38,13 @@ std::vector<HzbLevel> hzbLevels(int width, int height) {
   return levels;
 }
 
+// Sets every argument of a kernel in order.
+template <class... Args>
+void setArgs(cl::Kernel& kernel, const Args&... args) {
+  cl_uint index = 0;
+  (kernel.setArg(index++, args), ...);
+}
+
 size_t roundUp(size_t n, size_t multiple) { return (n + multiple - 1) / multiple * multiple; }
 
 double eventMs(const cl::Event& e) {
@@ -81,7 +88,8 @@ Pipeline& Pipeline::operator=(Pipeline&&) noexcept = default;
 
 void Pipeline::setImage(const std::string& name, const Image& image) {
   if (std::find(kInputNames.begin(), kInputNames.end(), name) == kInputNames.end())
-    throw Error(ErrorCode::InvalidArgument, "unknown input image '" + name + "' (expected color, depth, normal or roughness)");
+    throw Error(ErrorCode::InvalidArgument,
+                "unknown input image '" + name + "' (expected color, depth, normal or roughness)");
   impl_->inputs[name] = &image;
   impl_->committed = false;
 }
@@ -118,14 +126,15 @@ void Pipeline::Impl::validate() {
     const Image& img = *it->second;
     bool channelsOk = name == "color" ? (img.channels == 3 || img.channels == 4) : img.channels == expectedChannels[k];
     if (!channelsOk)
-      throw Error(ErrorCode::InvalidArgument, "pipeline: input image '" + name + "' has " +
-                                                  std::to_string(img.channels) + " channels");
+      throw Error(ErrorCode::InvalidArgument,
+                  "pipeline: input image '" + name + "' has " + std::to_string(img.channels) + " channels");
     if (img.width != camera.width || img.height != camera.height)
       throw Error(ErrorCode::InvalidInput, "pipeline: input image '" + name + "' is " + std::to_string(img.width) +
                                                "x" + std::to_string(img.height) + " but the camera is " +
                                                std::to_string(camera.width) + "x" + std::to_string(camera.height));
     if (img.data.size() != size_t(img.width) * img.height * img.channels)
-      throw Error(ErrorCode::InvalidArgument, "pipeline: input image '" + name + "' data size does not match its shape");
+      throw Error(ErrorCode::InvalidArgument,
+                  "pipeline: input image '" + name + "' data size does not match its shape");
   }
 }
 
@@ -150,7 +159,8 @@ void Pipeline::Impl::allocate() {
   normalIn = buffer(CL_MEM_READ_ONLY, pixels * 3 * sizeof(float));
   roughnessIn = buffer(CL_MEM_READ_ONLY, pixels * sizeof(float));
   hzb = buffer(CL_MEM_READ_WRITE, hzbSize * sizeof(float));
-  levelBuffer = cl::Buffer(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, levels.size() * sizeof(HzbLevel), levels.data());
+  levelBuffer =
+      cl::Buffer(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, levels.size() * sizeof(HzbLevel), levels.data());
   normals = buffer(CL_MEM_READ_WRITE, pixels * sizeof(cl_float4));
   color = buffer(CL_MEM_READ_WRITE, pixels * sizeof(cl_float4));
   rayList = buffer(CL_MEM_READ_WRITE, pixels * sizeof(cl_int));
@@ -187,48 +197,38 @@ void Pipeline::Impl::run() {
   const cl_float16 invProj = toFloat16RowMajor(glm::inverse(camera.projection));
   const float nearPlane = static_cast<float>(camera.nearPlane);
   const float farPlane = std::isfinite(camera.farPlane) ? static_cast<float>(std::min(camera.farPlane, 3.0e38))
-                                                         : std::numeric_limits<float>::max();
+                                                        : std::numeric_limits<float>::max();
 
   std::vector<cl::Event> uploads(5);
   const bool useRoughnessImage = settings.constantRoughness < 0.0f;
-  q.enqueueWriteBuffer(colorIn, CL_FALSE, 0, pixels * colorChannels * sizeof(float), inputs.at("color")->data.data(), nullptr, &uploads[0]);
-  q.enqueueWriteBuffer(depthIn, CL_FALSE, 0, pixels * sizeof(float), inputs.at("depth")->data.data(), nullptr, &uploads[1]);
-  q.enqueueWriteBuffer(normalIn, CL_FALSE, 0, pixels * 3 * sizeof(float), inputs.at("normal")->data.data(), nullptr, &uploads[2]);
+  q.enqueueWriteBuffer(colorIn, CL_FALSE, 0, pixels * colorChannels * sizeof(float), inputs.at("color")->data.data(),
+                       nullptr, &uploads[0]);
+  q.enqueueWriteBuffer(depthIn, CL_FALSE, 0, pixels * sizeof(float), inputs.at("depth")->data.data(), nullptr,
+                       &uploads[1]);
+  q.enqueueWriteBuffer(normalIn, CL_FALSE, 0, pixels * 3 * sizeof(float), inputs.at("normal")->data.data(), nullptr,
+                       &uploads[2]);
   const cl_int zero = 0;
   q.enqueueFillBuffer(rayCount, zero, 0, sizeof(cl_int), nullptr, &uploads[3]);
   q.enqueueFillBuffer(hits, cl_float4{{0, 0, 0, 0}}, 0, pixels * sizeof(cl_float4), nullptr, &uploads[4]);
   if (useRoughnessImage) {
     uploads.emplace_back();
-    q.enqueueWriteBuffer(roughnessIn, CL_FALSE, 0, pixels * sizeof(float), inputs.at("roughness")->data.data(), nullptr, &uploads.back());
+    q.enqueueWriteBuffer(roughnessIn, CL_FALSE, 0, pixels * sizeof(float), inputs.at("roughness")->data.data(), nullptr,
+                         &uploads.back());
   }
 
-  int a = 0;
-  setup.setArg(a++, size);
-  setup.setArg(a++, nearPlane);
-  setup.setArg(a++, farPlane);
-  setup.setArg(a++, normalMatrix16);
-  setup.setArg(a++, colorIn);
-  setup.setArg(a++, colorChannels);
-  setup.setArg(a++, depthIn);
-  setup.setArg(a++, normalIn);
-  setup.setArg(a++, roughnessIn);
-  setup.setArg(a++, useRoughnessImage ? -1.0f : settings.constantRoughness);
-  setup.setArg(a++, settings.maxRoughness);
-  setup.setArg(a++, hzb);  // HZB level 0 starts at offset 0
-  setup.setArg(a++, normals);
-  setup.setArg(a++, color);
-  setup.setArg(a++, rayList);
-  setup.setArg(a++, rayCount);
+  // HZB level 0 (planar depth) starts at offset 0 of the hzb buffer.
+  setArgs(setup, size, nearPlane, farPlane, normalMatrix16, colorIn, colorChannels, depthIn, normalIn, roughnessIn,
+          useRoughnessImage ? -1.0f : settings.constantRoughness, settings.maxRoughness, hzb, normals, color, rayList,
+          rayCount);
   cl::Event setupEvent;
   q.enqueueNDRangeKernel(setup, cl::NullRange, global2d, local2d, nullptr, &setupEvent);
 
   std::vector<cl::Event> hzbEvents(levels.size() - 1);
   for (size_t l = 1; l < levels.size(); ++l) {
-    hzbReduce.setArg(0, hzb);
-    hzbReduce.setArg(1, levelBuffer);
-    hzbReduce.setArg(2, static_cast<cl_int>(l));
-    q.enqueueNDRangeKernel(hzbReduce, cl::NullRange, cl::NDRange(roundUp(levels[l].width, 8), roundUp(levels[l].height, 8)),
-                           local2d, nullptr, &hzbEvents[l - 1]);
+    setArgs(hzbReduce, hzb, levelBuffer, static_cast<cl_int>(l));
+    q.enqueueNDRangeKernel(hzbReduce, cl::NullRange,
+                           cl::NDRange(roundUp(levels[l].width, 8), roundUp(levels[l].height, 8)), local2d, nullptr,
+                           &hzbEvents[l - 1]);
   }
 
   cl_int rays = 0;
@@ -237,31 +237,12 @@ void Pipeline::Impl::run() {
 
   cl::Event traceEvent;
   if (rays > 0) {
-    a = 0;
-    trace.setArg(a++, size);
-    trace.setArg(a++, proj);
-    trace.setArg(a++, invProj);
-    trace.setArg(a++, nearPlane);
-    trace.setArg(a++, farPlane);
-    trace.setArg(a++, hzb);
-    trace.setArg(a++, levelBuffer);
-    trace.setArg(a++, static_cast<cl_int>(levels.size()));
-    trace.setArg(a++, normals);
-    trace.setArg(a++, rayList);
-    trace.setArg(a++, rays);
-    trace.setArg(a++, settings.thicknessRelative);
-    trace.setArg(a++, settings.maxIterations);
-    trace.setArg(a++, hits);
+    setArgs(trace, size, proj, invProj, nearPlane, farPlane, hzb, levelBuffer, static_cast<cl_int>(levels.size()),
+            normals, rayList, rays, settings.thicknessRelative, settings.maxIterations, hits);
     q.enqueueNDRangeKernel(trace, cl::NullRange, cl::NDRange(roundUp(rays, 64)), cl::NDRange(64), nullptr, &traceEvent);
   }
 
-  a = 0;
-  resolve.setArg(a++, size);
-  resolve.setArg(a++, settings.edgeFade);
-  resolve.setArg(a++, hits);
-  resolve.setArg(a++, color);
-  resolve.setArg(a++, outRgba);
-  resolve.setArg(a++, outDistance);
+  setArgs(resolve, size, settings.edgeFade, hits, color, outRgba, outDistance);
   cl::Event resolveEvent;
   q.enqueueNDRangeKernel(resolve, cl::NullRange, global2d, local2d, nullptr, &resolveEvent);
 
@@ -307,8 +288,8 @@ std::vector<Image> Pipeline::readHzb() const {
   try {
     for (const HzbLevel& l : impl_->levels) {
       mips.emplace_back(l.width, l.height, 1);
-      impl_->queue().enqueueReadBuffer(impl_->hzb, CL_TRUE, l.offset * sizeof(float), mips.back().data.size() * sizeof(float),
-                                       mips.back().data.data());
+      impl_->queue().enqueueReadBuffer(impl_->hzb, CL_TRUE, l.offset * sizeof(float),
+                                       mips.back().data.size() * sizeof(float), mips.back().data.data());
     }
   } catch (const cl::Error& e) {
     detail::rethrowClError(e, "reading the HZB");

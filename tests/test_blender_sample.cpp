@@ -63,8 +63,8 @@ TEST(BlenderSample, FloorReflectionsMatchCycles) {
   std::sort(errors.begin(), errors.end());
   double median = errors[errors.size() / 2];
   double within25 = double(std::lower_bound(errors.begin(), errors.end(), 0.25) - errors.begin()) / errors.size();
-  std::cout << "floor pixels " << floor << ", with a hit " << errors.size() / 3 << ", median relative error "
-            << median << ", within 25%: " << within25 << "\n";
+  std::cout << "floor pixels " << floor << ", with a hit " << errors.size() / 3 << ", median relative error " << median
+            << ", within 25%: " << within25 << "\n";
   // Cycles' 64-sample noise on the objects (seen directly in Combined and through the mirror in
   // the glossy passes, independently) is most of the remaining error: measured median 0.093 and
   // 90% within 25%. A hit on the wrong object or pixel row gives errors of 100% and more.

@@ -1,15 +1,15 @@
 // Camera maths against GLM-built matrices, and the camera JSON sidecar.
 
-#include <cmath>
-#include <limits>
-#include <string>
-#include <vector>
+#include <gtest/gtest.h>
 
+#include <cmath>
 #include <glm/ext/matrix_clip_space.hpp>
 #include <glm/ext/matrix_transform.hpp>
 #include <glm/glm.hpp>
-#include <gtest/gtest.h>
+#include <limits>
 #include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
 
 #include "ssrcl/camera.hpp"
 #include "ssrcl/error.hpp"
@@ -56,11 +56,10 @@ const Planes kPlanes[] = {{0.1, 100.0}, {1e-4, 1.0}, {1e-4, 1e3}, {0.01, 1e5}, {
 
 TEST(DeriveClipPlanes, Perspective) {
   for (const Planes& p : kPlanes) {
-    for (const glm::dmat4& projection :
-         {glm::perspectiveRH_NO(kPi / 3, 16.0 / 9.0, p.nearPlane, p.farPlane),
-          glm::perspectiveRH_NO(0.2, 0.5, p.nearPlane, p.farPlane),
-          glm::frustumRH_NO(-0.3 * p.nearPlane, 0.1 * p.nearPlane, -0.05 * p.nearPlane, 0.2 * p.nearPlane,
-                            p.nearPlane, p.farPlane)}) {
+    for (const glm::dmat4& projection : {glm::perspectiveRH_NO(kPi / 3, 16.0 / 9.0, p.nearPlane, p.farPlane),
+                                         glm::perspectiveRH_NO(0.2, 0.5, p.nearPlane, p.farPlane),
+                                         glm::frustumRH_NO(-0.3 * p.nearPlane, 0.1 * p.nearPlane, -0.05 * p.nearPlane,
+                                                           0.2 * p.nearPlane, p.nearPlane, p.farPlane)}) {
       double n = 0, f = 0;
       deriveClipPlanes(projection, n, f);
       EXPECT_NEAR(n, p.nearPlane, 1e-9 * p.nearPlane);
@@ -173,7 +172,8 @@ TEST(ValidateCamera, RejectsUnusableCameras) {
       {"zero view", [](Camera& c) { c.view = glm::dmat4(0.0); }, "view matrix is singular"},
       {"rank 3 view", [](Camera& c) { c.view[2] = c.view[0]; }, "view matrix is singular"},
       {"zero projection row", [](Camera& c) { c.projection[0][0] = 0.0; }, "projection matrix is singular"},
-      {"rank 3 projection", [](Camera& c) { c.projection[3] = 2.0 * c.projection[2]; }, "projection matrix is singular"},
+      {"rank 3 projection", [](Camera& c) { c.projection[3] = 2.0 * c.projection[2]; },
+       "projection matrix is singular"},
       {"NaN in view", [](Camera& c) { c.view[1][2] = std::numeric_limits<double>::quiet_NaN(); }, "view"},
       {"inf in projection", [](Camera& c) { c.projection[0][0] = std::numeric_limits<double>::infinity(); },
        "projection"},
@@ -296,7 +296,8 @@ TEST(CameraJson, BadContentNamesFileAndField) {
       {"missing projection", without("projection"), "missing field 'projection'"},
       {"missing width", without("width"), "missing field 'width'"},
       {"missing height", without("height"), "missing field 'height'"},
-      {"three rows", with("view", {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}}), "field 'view' must be 4 rows of 4 numbers"},
+      {"three rows", with("view", {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}}),
+       "field 'view' must be 4 rows of 4 numbers"},
       {"flat array", with("view", json::array({1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1})), "field 'view'"},
       {"short row", shortRow.dump(), "field 'projection' must be 4 rows of 4 numbers"},
       {"text in a number", textInRow.dump(), "field 'view' must be 4 rows of 4 numbers"},
@@ -310,7 +311,8 @@ TEST(CameraJson, BadContentNamesFileAndField) {
       {"near beyond far", with("far", 0.01), "near"},
       {"singular projection", with("projection", {{0, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, -1.1, -0.2}, {0, 0, -1, 0}}),
        "projection matrix is singular"},
-      {"singular view", with("view", {{1, 0, 0, 0}, {1, 0, 0, 0}, {0, 0, 1, 0}, {0, 0, 0, 1}}), "view matrix is singular"},
+      {"singular view", with("view", {{1, 0, 0, 0}, {1, 0, 0, 0}, {0, 0, 1, 0}, {0, 0, 0, 1}}),
+       "view matrix is singular"},
       {"unknown projection", with("projection", {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}, {0, 0, 1, 1}}),
        "field 'projection'"},
       {"invalid JSON", "{\n  \"width\": 640,\n  \"height\": \n}", "line 4"},

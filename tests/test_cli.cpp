@@ -39,10 +39,10 @@ void writeShot(const std::string& exr, const std::vector<std::string>& skip = {}
       g[i] = float(y) / kH;
     }
   std::vector<ExrChannel> channels = {
-      {"ViewLayer.Combined.R", r, Imf::HALF},   {"ViewLayer.Combined.G", g, Imf::HALF},
-      {"ViewLayer.Combined.B", b, Imf::HALF},   {"ViewLayer.Depth.Z", z, Imf::FLOAT},
-      {"ViewLayer.Normal.X", nx, Imf::FLOAT},   {"ViewLayer.Normal.Y", ny, Imf::FLOAT},
-      {"ViewLayer.Normal.Z", nz, Imf::FLOAT},   {"ViewLayer.roughness.X", rough, Imf::FLOAT}};
+      {"ViewLayer.Combined.R", r, Imf::HALF}, {"ViewLayer.Combined.G", g, Imf::HALF},
+      {"ViewLayer.Combined.B", b, Imf::HALF}, {"ViewLayer.Depth.Z", z, Imf::FLOAT},
+      {"ViewLayer.Normal.X", nx, Imf::FLOAT}, {"ViewLayer.Normal.Y", ny, Imf::FLOAT},
+      {"ViewLayer.Normal.Z", nz, Imf::FLOAT}, {"ViewLayer.roughness.X", rough, Imf::FLOAT}};
   std::vector<ExrChannel> kept;
   for (auto& c : channels)
     if (std::find(skip.begin(), skip.end(), c.name) == skip.end()) kept.push_back(c);
@@ -182,10 +182,10 @@ TEST_F(Cli, PerPassFilesAndPlainChannelNames) {
   ssrcl::test::writeExr(dir.file("c.exr"), kW, kH, {{"R", rgb}, {"G", rgb}, {"B", rgb}});
   ssrcl::test::writeExr(dir.file("z.exr"), kW, kH, {{"Z", gb.depth.data}});
   ssrcl::test::writeExr(dir.file("n.exr"), kW, kH, {{"N.X", nrm}, {"N.Y", up}, {"N.Z", nrm}});
-  auto r = runCommand(cli("trace --layer '' --color " + shellQuote(dir.file("c.exr")) + " --depth " +
-                          shellQuote(dir.file("z.exr")) + " --normal " + shellQuote(dir.file("n.exr")) +
-                          " --roughness 0 --camera " + shellQuote(dir.file("shot.camera.json")) + " -o " +
-                          shellQuote(out)));
+  auto r =
+      runCommand(cli("trace --layer '' --color " + shellQuote(dir.file("c.exr")) + " --depth " +
+                     shellQuote(dir.file("z.exr")) + " --normal " + shellQuote(dir.file("n.exr")) +
+                     " --roughness 0 --camera " + shellQuote(dir.file("shot.camera.json")) + " -o " + shellQuote(out)));
   EXPECT_EQ(r.exitCode, 0) << r.output;
   EXPECT_TRUE(std::filesystem::exists(out));
 }

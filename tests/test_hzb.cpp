@@ -7,8 +7,8 @@
 #include <random>
 
 #include "ssrcl/ssrcl.hpp"
-#include "support/test_device.hpp"
 #include "support/simple_camera.hpp"
+#include "support/test_device.hpp"
 
 namespace {
 

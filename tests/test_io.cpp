@@ -1,12 +1,12 @@
 // EXR input (G-buffer) and output (reflection pass) against files written by the fixtures.
 
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <string>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "ssrcl/error.hpp"
 #include "ssrcl/io.hpp"
@@ -30,17 +30,21 @@ ExrChannel channel(const std::string& name, float seed, Imf::PixelType type = Im
 
 // Blender's multilayer naming; colour in half as Blender writes it by default.
 std::vector<ExrChannel> blenderChannels(const std::string& layer = "ViewLayer") {
-  return {channel(layer + ".Combined.R", 1, Imf::HALF),  channel(layer + ".Combined.G", 2, Imf::HALF),
-          channel(layer + ".Combined.B", 3, Imf::HALF),  channel(layer + ".Combined.A", 4, Imf::HALF),
-          channel(layer + ".Depth.Z", 5),                channel(layer + ".Normal.X", 6),
-          channel(layer + ".Normal.Y", 7),               channel(layer + ".Normal.Z", 8),
+  return {channel(layer + ".Combined.R", 1, Imf::HALF),
+          channel(layer + ".Combined.G", 2, Imf::HALF),
+          channel(layer + ".Combined.B", 3, Imf::HALF),
+          channel(layer + ".Combined.A", 4, Imf::HALF),
+          channel(layer + ".Depth.Z", 5),
+          channel(layer + ".Normal.X", 6),
+          channel(layer + ".Normal.Y", 7),
+          channel(layer + ".Normal.Z", 8),
           channel(layer + ".roughness.X", 9, Imf::HALF)};
 }
 
 std::vector<ExrChannel> plainChannels() {
-  return {channel("R", 11, Imf::HALF), channel("G", 12, Imf::HALF), channel("B", 13, Imf::HALF),
-          channel("Z", 14),            channel("N.X", 15),          channel("N.Y", 16),
-          channel("N.Z", 17),          channel("roughness", 18)};
+  return {
+      channel("R", 11, Imf::HALF), channel("G", 12, Imf::HALF), channel("B", 13, Imf::HALF), channel("Z", 14),
+      channel("N.X", 15),          channel("N.Y", 16),          channel("N.Z", 17),          channel("roughness", 18)};
 }
 
 const ExrChannel& named(const std::vector<ExrChannel>& channels, const std::string& name) {
@@ -136,8 +140,9 @@ TEST(LoadGBuffer, MultiPartWithLayerPassParts) {
   // Part "ViewLayer.Combined" with channel "R" and so on.
   test::TempDir dir;
   const std::vector<ExrPart> parts = {
-      {"ViewLayer.Combined", {channel("R", 1, Imf::HALF), channel("G", 2, Imf::HALF), channel("B", 3, Imf::HALF),
-                              channel("A", 4, Imf::HALF)}},
+      {"ViewLayer.Combined",
+       {channel("R", 1, Imf::HALF), channel("G", 2, Imf::HALF), channel("B", 3, Imf::HALF),
+        channel("A", 4, Imf::HALF)}},
       {"ViewLayer.Depth", {channel("Z", 5)}},
       {"ViewLayer.Normal", {channel("X", 6), channel("Y", 7), channel("Z", 8)}},
       {"ViewLayer.roughness", {channel("X", 9, Imf::HALF)}},
@@ -193,7 +198,7 @@ TEST(LoadGBuffer, PlainSingleLayerWithUintRoughness) {
 TEST(LoadGBuffer, ExplicitChannelNames) {
   test::TempDir dir;
   const std::vector<ExrChannel> ch = {channel("Y", 1, Imf::HALF), channel("depth", 2), channel("nx", 3),
-                                      channel("ny", 4), channel("nz", 5), channel("rough", 6)};
+                                      channel("ny", 4),           channel("nz", 5),    channel("rough", 6)};
   test::writeExr(dir.file("custom.exr"), kWidth, kHeight, ch);
   GBufferSource source = fromFile(dir.file("custom.exr"));
   source.colorChannels = "Y,Y, Y";  // the same channel three times, spaces tolerated
@@ -321,8 +326,7 @@ TEST(LoadGBufferErrors, MissingRoughnessUnlessConstant) {
   ch.pop_back();
   const std::string file = dir.file("norough.exr");
   test::writeExr(file, kWidth, kHeight, ch);
-  expectError([&] { loadGBuffer(fromFile(file)); }, ErrorCode::InvalidInput, file,
-              {"'ViewLayer.roughness.X'"});
+  expectError([&] { loadGBuffer(fromFile(file)); }, ErrorCode::InvalidInput, file, {"'ViewLayer.roughness.X'"});
 }
 
 TEST(LoadGBufferErrors, MultiPartListsQualifiedNames) {
@@ -512,8 +516,8 @@ TEST(WriteReflectionExr, FailedRenameRemovesTheTemporary) {
   const std::string target = dir.file("refl.exr");
   fs::create_directory(target);
   test::writeBytes(target + "/keep", "content");
-  expectError([&] { writeReflectionExr(target, filled(2, 2, 4, 0), filled(2, 2, 1, 0)); }, ErrorCode::IoError,
-              target, {"cannot write (cannot replace it"});
+  expectError([&] { writeReflectionExr(target, filled(2, 2, 4, 0), filled(2, 2, 1, 0)); }, ErrorCode::IoError, target,
+              {"cannot write (cannot replace it"});
   EXPECT_EQ(listDir(dir.path()), std::vector<std::string>{"refl.exr"});
   EXPECT_EQ(test::readBytes(target + "/keep"), "content");
 }

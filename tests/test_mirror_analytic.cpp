@@ -4,12 +4,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <glm/geometric.hpp>
 #include <iostream>
 #include <sstream>
 #include <string>
 #include <vector>
-
-#include <glm/geometric.hpp>
 
 #include "ssrcl/device.hpp"
 #include "ssrcl/pipeline.hpp"
@@ -142,8 +141,8 @@ TEST_P(GeneratorTest, EveryClassIsWellRepresented) {
   std::size_t surface = r.g.hits.size() - r.truth.count(ReflectionClass::NoSurface);
   std::ostringstream line;
   line << caseName(GetParam()) << " surface " << surface;
-  for (auto c : {ReflectionClass::Visible, ReflectionClass::OffScreen, ReflectionClass::Occluded,
-                 ReflectionClass::Sky}) {
+  for (auto c :
+       {ReflectionClass::Visible, ReflectionClass::OffScreen, ReflectionClass::Occluded, ReflectionClass::Sky}) {
     line << " " << className(c) << " " << r.truth.count(c);
     // At least 1% of the surface pixels each, so every branch of the SSR is exercised.
     EXPECT_GT(r.truth.count(c), surface / 100) << className(c);
@@ -331,10 +330,10 @@ TEST_P(MirrorSsrTest, MatchesExactReflections) {
             std::ostringstream o;
             o << "(" << x << "," << y << ") on " << r.scene.primitives[std::size_t(r.g.hit(x, y).primitive)].name
               << " exp rgb " << s.color.r << " " << s.color.g << " " << s.color.b << " dist " << s.hit.t << " ("
-              << r.scene.primitives[std::size_t(s.hit.primitive)].name << " at px " << s.screen.x << ","
-              << s.screen.y << (s.nearEdge ? ", near edge" : "") << ", allow " << colorAllowance(s) << "/"
-              << distanceAllowance(s) << ") got rgba " << refl.at(x, y, 0) << " " << refl.at(x, y, 1) << " "
-              << refl.at(x, y, 2) << " " << a << " dist " << d;
+              << r.scene.primitives[std::size_t(s.hit.primitive)].name << " at px " << s.screen.x << "," << s.screen.y
+              << (s.nearEdge ? ", near edge" : "") << ", allow " << colorAllowance(s) << "/" << distanceAllowance(s)
+              << ") got rgba " << refl.at(x, y, 0) << " " << refl.at(x, y, 1) << " " << refl.at(x, y, 2) << " " << a
+              << " dist " << d;
             badVisible.push_back(o.str());
           }
           break;
@@ -362,10 +361,10 @@ TEST_P(MirrorSsrTest, MatchesExactReflections) {
   const double colorRate = fraction(colorOk, visible), distRate = fraction(distOk, visible);
   const double strictRate = fraction(strictOk, visible), resolvableRate = fraction(resolvableOk, resolvableCount);
   const double missRate = fraction(missOk, missTotal), occludedHitRate = fraction(occludedHit, occluded);
-  std::cout << caseName(c) << ": visible " << visible << " colour match " << colorRate << " distance match "
-            << distRate << " (strict " << strictRate << ", on " << resolvableCount << " resolvable "
-            << resolvableRate << "); sky/offscreen " << missTotal << " reported miss " << missRate << "; occluded "
-            << occluded << " marked hit " << occludedHitRate << "\n";
+  std::cout << caseName(c) << ": visible " << visible << " colour match " << colorRate << " distance match " << distRate
+            << " (strict " << strictRate << ", on " << resolvableCount << " resolvable " << resolvableRate
+            << "); sky/offscreen " << missTotal << " reported miss " << missRate << "; occluded " << occluded
+            << " marked hit " << occludedHitRate << "\n";
   RecordProperty("visible_color_match", std::to_string(colorRate));
   RecordProperty("visible_distance_match", std::to_string(distRate));
   RecordProperty("visible_strict_match", std::to_string(strictRate));

@@ -14,11 +14,13 @@ inline int exitCodeFor(ErrorCode code) {
   switch (code) {
     case ErrorCode::InvalidArgument:
     case ErrorCode::InvalidInput:
-    case ErrorCode::IoError: return kExitUsage;
+    case ErrorCode::IoError:
+      return kExitUsage;
     case ErrorCode::NoDevice:
     case ErrorCode::KernelBuild:
     case ErrorCode::OpenCL:
-    case ErrorCode::OutOfMemory: return kExitDevice;
+    case ErrorCode::OutOfMemory:
+      return kExitDevice;
   }
   return kExitInternal;
 }

@@ -78,31 +78,44 @@ Action addTraceCommand(CLI::App& app) {
   auto o = std::make_shared<TraceOptions>();
   CLI::App* cmd = app.add_subcommand("trace", "Compute the reflection pass of one G-buffer");
   cmd->add_option("input", o->input, "G-buffer EXR (Blender multilayer by default)");
-  cmd->add_option("-o,--output", o->output, "Output EXR: R,G,B,A (premultiplied, A = confidence), distance")->required();
+  cmd->add_option("-o,--output", o->output, "Output EXR: R,G,B,A (premultiplied, A = confidence), distance")
+      ->required();
   cmd->add_option("--camera", o->camera, "Camera JSON (default: <input stem>.camera.json beside the input)");
   cmd->add_option("--device", o->device, "OpenCL device: index from `ssrcl devices`, cpu, gpu or default");
   auto* in = "Input channels";
-  cmd->add_option("--layer", o->source.layer, "Layer prefix of the default channel names; \"\" for plain R,G,B / Z / N.X")
-      ->group(in)->capture_default_str();
+  cmd->add_option("--layer", o->source.layer,
+                  "Layer prefix of the default channel names; \"\" for plain R,G,B / Z / N.X")
+      ->group(in)
+      ->capture_default_str();
   cmd->add_option("--color", o->source.colorFile, "Read color from this EXR instead")->group(in);
   cmd->add_option("--depth", o->source.depthFile, "Read depth from this EXR instead")->group(in);
   cmd->add_option("--normal", o->source.normalFile, "Read normals from this EXR instead")->group(in);
   cmd->add_option("--roughness-file", o->source.roughnessFile, "Read roughness from this EXR instead")->group(in);
   cmd->add_option("--color-channels", o->source.colorChannels, "Color channel names, e.g. R,G,B")->group(in);
   cmd->add_option("--depth-channel", o->source.depthChannel, "Depth channel name (planar view depth)")->group(in);
-  cmd->add_option("--normal-channels", o->source.normalChannels, "World-space normal channels, e.g. N.X,N.Y,N.Z")->group(in);
+  cmd->add_option("--normal-channels", o->source.normalChannels, "World-space normal channels, e.g. N.X,N.Y,N.Z")
+      ->group(in);
   cmd->add_option("--roughness-channel", o->source.roughnessChannel, "Roughness channel name")->group(in);
   cmd->add_option("--roughness", o->roughness, "Constant roughness for every pixel instead of a channel")
-      ->group(in)->check(CLI::Range(0.0f, 1.0f));
+      ->group(in)
+      ->check(CLI::Range(0.0f, 1.0f));
   auto* tr = "Tracing";
   cmd->add_option("--max-roughness", o->settings.maxRoughness, "Pixels rougher than this get no ray (A = 0)")
-      ->group(tr)->capture_default_str()->check(CLI::Range(0.0f, 1.0f));
+      ->group(tr)
+      ->capture_default_str()
+      ->check(CLI::Range(0.0f, 1.0f));
   cmd->add_option("--thickness", o->settings.thicknessRelative, "Surface thickness relative to its depth")
-      ->group(tr)->capture_default_str()->check(CLI::Range(1e-6f, 10.0f));
+      ->group(tr)
+      ->capture_default_str()
+      ->check(CLI::Range(1e-6f, 10.0f));
   cmd->add_option("--max-iterations", o->settings.maxIterations, "Hi-Z traversal steps per ray")
-      ->group(tr)->capture_default_str()->check(CLI::Range(1, 1 << 20));
+      ->group(tr)
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1 << 20));
   cmd->add_option("--edge-fade", o->settings.edgeFade, "Fraction of the screen over which A fades at its edges")
-      ->group(tr)->capture_default_str()->check(CLI::Range(0.0f, 0.5f));
+      ->group(tr)
+      ->capture_default_str()
+      ->check(CLI::Range(0.0f, 0.5f));
   cmd->add_flag("--stats", o->stats, "Print per-stage device times (OpenCL profiling) to stderr");
   return [o] { return runTrace(*o); };
 }

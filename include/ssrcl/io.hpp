@@ -17,7 +17,7 @@ struct GBufferSource {
   std::string file;
   std::string colorFile, depthFile, normalFile, roughnessFile;
   std::string layer = "ViewLayer";
-  std::string colorChannels;   // comma-separated "R,G,B" form
+  std::string colorChannels;  // comma-separated "R,G,B" form
   std::string depthChannel;
   std::string normalChannels;  // comma-separated "X,Y,Z" form
   std::string roughnessChannel;

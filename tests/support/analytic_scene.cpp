@@ -2,13 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
-#include <stdexcept>
-
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/mat4x4.hpp>
 #include <glm/vec4.hpp>
+#include <limits>
+#include <stdexcept>
 
 namespace ssrcl::test {
 namespace {
@@ -96,8 +95,7 @@ Primitive plane(const std::string& name, dvec3 point, dvec3 normal, Material m) 
   return p;
 }
 
-Primitive rectangle(const std::string& name, dvec3 center, dvec3 normal, double halfU, double halfV,
-                    Material m) {
+Primitive rectangle(const std::string& name, dvec3 center, dvec3 normal, double halfU, double halfV, Material m) {
   Primitive p = plane(name, center, normal, m);
   p.kind = Primitive::Kind::Rectangle;
   p.halfSize = dvec3(halfU, 0, halfV);
@@ -176,8 +174,8 @@ Camera makeCamera(const ViewParams& view, int width, int height) {
   c.width = width;
   c.height = height;
   c.view = glm::lookAt(view.eye, view.target, view.up);
-  c.projection = glm::perspective(view.fovYDegrees * kPi / 180.0, double(width) / height, view.nearPlane,
-                                  view.farPlane);
+  c.projection =
+      glm::perspective(view.fovYDegrees * kPi / 180.0, double(width) / height, view.nearPlane, view.farPlane);
   c.nearPlane = view.nearPlane;
   c.farPlane = view.farPlane;
   return c;
@@ -202,9 +200,15 @@ Hit intersect(const Scene& scene, const Ray& ray, double tMin) {
     dvec3 localNormal(0.0);
     double t = kInf;
     switch (p.kind) {
-      case Primitive::Kind::Sphere: t = sphereT(p, ray, tMin); break;
-      case Primitive::Kind::Box: t = boxT(p, ray, tMin, localNormal); break;
-      default: t = planarT(p, ray, tMin); break;
+      case Primitive::Kind::Sphere:
+        t = sphereT(p, ray, tMin);
+        break;
+      case Primitive::Kind::Box:
+        t = boxT(p, ray, tMin, localNormal);
+        break;
+      default:
+        t = planarT(p, ray, tMin);
+        break;
     }
     if (!(t < best.t)) continue;
     best.primitive = int(i);
@@ -235,9 +239,7 @@ dvec3 colorAt(const Scene& scene, const Hit& hit) {
   return c;
 }
 
-double planarDepth(const Camera& camera, const dvec3& world) {
-  return -(camera.view * dvec4(world, 1.0)).z;
-}
+double planarDepth(const Camera& camera, const dvec3& world) { return -(camera.view * dvec4(world, 1.0)).z; }
 
 dvec3 projectToScreen(const Camera& camera, const dvec3& world) {
   const dvec4 clip = camera.projection * camera.view * dvec4(world, 1.0);
@@ -274,11 +276,16 @@ AnalyticGBuffer renderGBuffer(const Scene& scene, const Camera& camera) {
 
 const char* className(ReflectionClass c) {
   switch (c) {
-    case ReflectionClass::NoSurface: return "NoSurface";
-    case ReflectionClass::Visible: return "Visible";
-    case ReflectionClass::OffScreen: return "OffScreen";
-    case ReflectionClass::Occluded: return "Occluded";
-    case ReflectionClass::Sky: return "Sky";
+    case ReflectionClass::NoSurface:
+      return "NoSurface";
+    case ReflectionClass::Visible:
+      return "Visible";
+    case ReflectionClass::OffScreen:
+      return "OffScreen";
+    case ReflectionClass::Occluded:
+      return "Occluded";
+    case ReflectionClass::Sky:
+      return "Sky";
   }
   return "?";
 }
@@ -297,9 +304,8 @@ MirrorSample reflectAt(const Scene& scene, const Camera& camera, const Hit& surf
     return s;
   }
   s.screen = projectToScreen(camera, s.hit.position);
-  const bool onScreen = s.screen.x >= 0 && s.screen.x < camera.width && s.screen.y >= 0 &&
-                        s.screen.y < camera.height && s.screen.z >= camera.nearPlane &&
-                        s.screen.z <= camera.farPlane;
+  const bool onScreen = s.screen.x >= 0 && s.screen.x < camera.width && s.screen.y >= 0 && s.screen.y < camera.height &&
+                        s.screen.z >= camera.nearPlane && s.screen.z <= camera.farPlane;
   if (!onScreen) {
     s.cls = ReflectionClass::OffScreen;
     return s;

@@ -6,10 +6,9 @@
 // row, NDC x = 2 * sx / W - 1, NDC y = 1 - 2 * sy / H for continuous pixel coordinates (sx, sy).
 // The sky (no hit) has depth kSkyDepth (Blender's convention), a zero normal and roughness 0.
 #include <cstddef>
+#include <glm/vec3.hpp>
 #include <string>
 #include <vector>
-
-#include <glm/vec3.hpp>
 
 #include "ssrcl/camera.hpp"
 #include "ssrcl/image.hpp"
@@ -32,23 +31,22 @@ struct Primitive {
   enum class Kind { Plane, Rectangle, Disk, Sphere, Box };
   Kind kind = Kind::Sphere;
   std::string name;
-  glm::dvec3 center{0.0};        // plane: any point on it
-  glm::dvec3 normal{0, 1, 0};    // plane, rectangle, disk (unit); two-sided
-  glm::dvec3 halfSize{0.0};      // box: half extents; rectangle: x, z = half extents along u, v
-  double radius = 0.0;           // sphere, disk
-  double yawRadians = 0.0;       // box: rotation about +Y
+  glm::dvec3 center{0.0};      // plane: any point on it
+  glm::dvec3 normal{0, 1, 0};  // plane, rectangle, disk (unit); two-sided
+  glm::dvec3 halfSize{0.0};    // box: half extents; rectangle: x, z = half extents along u, v
+  double radius = 0.0;         // sphere, disk
+  double yawRadians = 0.0;     // box: rotation about +Y
   Material material;
 };
 // Rectangle/disk in-plane axes: u = normalize(cross(normal, +Z)) (or +X when normal ~ Z),
 // v = cross(u, normal); for a floor (normal +Y) u = +X and v = +Z.
 
 Primitive plane(const std::string& name, glm::dvec3 point, glm::dvec3 normal, Material m);
-Primitive rectangle(const std::string& name, glm::dvec3 center, glm::dvec3 normal, double halfU,
-                    double halfV, Material m);
+Primitive rectangle(const std::string& name, glm::dvec3 center, glm::dvec3 normal, double halfU, double halfV,
+                    Material m);
 Primitive disk(const std::string& name, glm::dvec3 center, glm::dvec3 normal, double radius, Material m);
 Primitive sphere(const std::string& name, glm::dvec3 center, double radius, Material m);
-Primitive box(const std::string& name, glm::dvec3 center, glm::dvec3 halfSize, double yawDegrees,
-              Material m);
+Primitive box(const std::string& name, glm::dvec3 center, glm::dvec3 halfSize, double yawDegrees, Material m);
 
 // Pinhole camera placement; combined with a resolution by makeCamera().
 struct ViewParams {
@@ -123,20 +121,19 @@ const char* className(ReflectionClass c);
 
 struct MirrorSample {
   ReflectionClass cls = ReflectionClass::NoSurface;
-  Ray reflected;         // from the exact surface point along the exact mirror direction
-  Hit hit;               // first surface along `reflected`; hit.t = hit distance
-  glm::dvec3 color{0.0};  // exact colour at hit.position (sky colour for Sky)
+  Ray reflected;           // from the exact surface point along the exact mirror direction
+  Hit hit;                 // first surface along `reflected`; hit.t = hit distance
+  glm::dvec3 color{0.0};   // exact colour at hit.position (sky colour for Sky)
   glm::dvec3 screen{0.0};  // projectToScreen(hit.position) when there is a hit
   // Visible only: how much the answer changes within one pixel of `screen`, from the primary rays
   // at +-1 px (8 neighbours), i.e. what a screen-space tracer with one pixel of error may return.
-  bool nearEdge = false;       // a neighbour sees another primitive or the sky
+  bool nearEdge = false;        // a neighbour sees another primitive or the sky
   double colorSpread = 0.0;     // largest max-abs colour difference to a neighbour
   double distanceSpread = 0.0;  // largest relative change of the distance from reflected.origin
 };
 
 // Mirror reflection of one surface point seen along unit `viewDir` (eye -> point).
-MirrorSample reflectAt(const Scene& scene, const Camera& camera, const Hit& surface,
-                       const glm::dvec3& viewDir);
+MirrorSample reflectAt(const Scene& scene, const Camera& camera, const Hit& surface, const glm::dvec3& viewDir);
 
 struct MirrorTruth {
   int width = 0, height = 0;

@@ -1,11 +1,5 @@
 #include "support/exr_fixtures.hpp"
 
-#include <cstdint>
-#include <cstring>
-#include <fstream>
-#include <iterator>
-#include <stdexcept>
-
 #include <Imath/half.h>
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfFrameBuffer.h>
@@ -15,6 +9,12 @@
 #include <OpenEXR/ImfOutputPart.h>
 #include <OpenEXR/ImfPartType.h>
 #include <OpenEXR/ImfTiledOutputPart.h>
+
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <stdexcept>
 
 namespace ssrcl::test {
 namespace {
@@ -29,9 +29,10 @@ std::vector<char> encode(const ExrChannel& channel) {
     const float v = channel.values[i];
     const half h(v);
     const std::uint32_t u = std::uint32_t(v);
-    std::memcpy(&bytes[i * size], channel.type == Imf::HALF ? static_cast<const void*>(&h)
-                                  : channel.type == Imf::UINT ? static_cast<const void*>(&u)
-                                                              : static_cast<const void*>(&v),
+    std::memcpy(&bytes[i * size],
+                channel.type == Imf::HALF   ? static_cast<const void*>(&h)
+                : channel.type == Imf::UINT ? static_cast<const void*>(&u)
+                                            : static_cast<const void*>(&v),
                 size);
   }
   return bytes;

@@ -1,10 +1,10 @@
 #pragma once
+#include <OpenEXR/ImfCompression.h>
+#include <OpenEXR/ImfPixelType.h>
+
 #include <map>
 #include <string>
 #include <vector>
-
-#include <OpenEXR/ImfCompression.h>
-#include <OpenEXR/ImfPixelType.h>
 
 namespace ssrcl::test {
 
