@@ -66,17 +66,22 @@ struct Pipeline::Impl {
   int width = 0, height = 0, colorChannels = 0;
   std::vector<HzbLevel> levels;
 
-  cl::Kernel setup, hzbReduce, trace, resolve;
+  cl::Kernel setup, hzbReduce, colorReduce, trace, accumulate, finalize, denoise;
   cl::Buffer colorIn, depthIn, normalIn, roughnessIn;
-  cl::Buffer hzb, levelBuffer, normals, color, rayList, rayCount, hits, outRgba, outDistance;
+  cl::Buffer hzb, levelBuffer, normals, colorPyramid, pixelRays, rayList, rayCount;
+  cl::Buffer accRadiance, accWeight, resolvedRgba, resolvedDistance, outRgba, outDistance;
+  cl::Buffer rayHit, rayRadiance;  // one batch of ray records; sized on first use
+  int batchCapacity = 0;
 
   Image reflection, distance;
   StageTimes times;
 
   explicit Impl(const Device& d) : device(d) {}
 
+  void validateSettings() const;
   void validate();
   void allocate();
+  int batchSize();
   void run();
   cl::CommandQueue& queue() { return device.impl().queue; }
 };
@@ -102,9 +107,7 @@ void Pipeline::setCamera(const Camera& camera) {
 
 TraceSettings& Pipeline::settings() { return impl_->settings; }
 
-void Pipeline::Impl::validate() {
-  if (!hasCamera) throw Error(ErrorCode::InvalidArgument, "pipeline: no camera set");
-  validateCamera(camera, "camera");
+void Pipeline::Impl::validateSettings() const {
   const TraceSettings& s = settings;
   if (!(s.thicknessRelative > 0.0f) || !std::isfinite(s.thicknessRelative))
     throw Error(ErrorCode::InvalidArgument, "parameter thickness must be a positive number");
@@ -113,6 +116,21 @@ void Pipeline::Impl::validate() {
   if (!(s.edgeFade >= 0.0f && s.edgeFade <= 0.5f))
     throw Error(ErrorCode::InvalidArgument, "parameter edge-fade must be in [0, 0.5]");
   if (std::isnan(s.constantRoughness)) throw Error(ErrorCode::InvalidArgument, "parameter roughness is NaN");
+  if (s.samplesPerPixel < 1 || s.samplesPerPixel > 65536)
+    throw Error(ErrorCode::InvalidArgument, "parameter spp must be in [1, 65536]");
+  if (!(s.mirrorRoughness >= 0.0f && s.mirrorRoughness <= 1.0f))
+    throw Error(ErrorCode::InvalidArgument, "parameter mirror-roughness must be in [0, 1]");
+  if (s.reuseRadius < 0 || s.reuseRadius > 8)
+    throw Error(ErrorCode::InvalidArgument, "parameter reuse-radius must be in [0, 8]");
+  if (!(s.linearStepPixels >= 0.05f && s.linearStepPixels <= 8.0f))
+    throw Error(ErrorCode::InvalidArgument, "parameter linear-step must be in [0.05, 8] pixels");
+}
+
+void Pipeline::Impl::validate() {
+  if (!hasCamera) throw Error(ErrorCode::InvalidArgument, "pipeline: no camera set");
+  validateCamera(camera, "camera");
+  validateSettings();
+  const TraceSettings& s = settings;
 
   const bool needRoughness = s.constantRoughness < 0.0f;
   const std::array<int, 4> expectedChannels = {3, 1, 3, 1};
@@ -150,8 +168,11 @@ void Pipeline::Impl::allocate() {
 
   setup = cl::Kernel(program, "setup");
   hzbReduce = cl::Kernel(program, "hzb_reduce");
-  trace = cl::Kernel(program, "trace_mirror");
-  resolve = cl::Kernel(program, "resolve_mirror");
+  colorReduce = cl::Kernel(program, "color_reduce");
+  trace = cl::Kernel(program, "trace_rays");
+  accumulate = cl::Kernel(program, "resolve_accumulate");
+  finalize = cl::Kernel(program, "resolve_finalize");
+  denoise = cl::Kernel(program, "denoise");
 
   auto buffer = [&](cl_mem_flags flags, size_t bytes) { return cl::Buffer(ctx, flags, std::max<size_t>(bytes, 4)); };
   colorIn = buffer(CL_MEM_READ_ONLY, pixels * colorChannels * sizeof(float));
@@ -162,12 +183,17 @@ void Pipeline::Impl::allocate() {
   levelBuffer =
       cl::Buffer(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, levels.size() * sizeof(HzbLevel), levels.data());
   normals = buffer(CL_MEM_READ_WRITE, pixels * sizeof(cl_float4));
-  color = buffer(CL_MEM_READ_WRITE, pixels * sizeof(cl_float4));
+  colorPyramid = buffer(CL_MEM_READ_WRITE, hzbSize * sizeof(cl_float4));
+  pixelRays = buffer(CL_MEM_READ_WRITE, pixels * sizeof(cl_int));
   rayList = buffer(CL_MEM_READ_WRITE, pixels * sizeof(cl_int));
-  rayCount = buffer(CL_MEM_READ_WRITE, sizeof(cl_int));
-  hits = buffer(CL_MEM_READ_WRITE, pixels * sizeof(cl_float4));
+  rayCount = buffer(CL_MEM_READ_WRITE, 2 * sizeof(cl_int));
+  accRadiance = buffer(CL_MEM_READ_WRITE, pixels * sizeof(cl_float4));
+  accWeight = buffer(CL_MEM_READ_WRITE, pixels * sizeof(cl_float2));
+  resolvedRgba = buffer(CL_MEM_READ_WRITE, pixels * sizeof(cl_float4));
+  resolvedDistance = buffer(CL_MEM_READ_WRITE, pixels * sizeof(float));
   outRgba = buffer(CL_MEM_WRITE_ONLY, pixels * sizeof(cl_float4));
   outDistance = buffer(CL_MEM_WRITE_ONLY, pixels * sizeof(float));
+  batchCapacity = 0;
   reflection = Image(width, height, 4);
   distance = Image(width, height, 1);
 }
@@ -183,12 +209,30 @@ void Pipeline::commit() {
   impl_->committed = true;
 }
 
+// Samples traced per pass: all of them when the ray records fit in kRayRecordBudget, else fewer
+// passes' worth at a time (the resolve accumulates across passes, so the result is the same).
+int Pipeline::Impl::batchSize() {
+  constexpr size_t kRayRecordBudget = size_t(512) << 20;
+  const size_t perSample = size_t(width) * height * 2 * sizeof(cl_float4);
+  const int fit = static_cast<int>(std::max<size_t>(1, kRayRecordBudget / perSample));
+  const int batch = std::min(settings.samplesPerPixel, fit);
+  if (batch > batchCapacity) {
+    const cl::Context& ctx = device.impl().context;
+    rayHit = cl::Buffer(ctx, CL_MEM_READ_WRITE, perSample / 2 * batch);
+    rayRadiance = cl::Buffer(ctx, CL_MEM_READ_WRITE, perSample / 2 * batch);
+    batchCapacity = batch;
+  }
+  return batch;
+}
+
 void Pipeline::Impl::run() {
+  validateSettings();
   cl::CommandQueue& q = queue();
   const size_t pixels = size_t(width) * height;
   const cl_int2 size = {{width, height}};
   const cl::NDRange local2d(8, 8);
   const cl::NDRange global2d(roundUp(width, 8), roundUp(height, 8));
+  const TraceSettings& s = settings;
 
   // Normals go to view space with the inverse transpose, which stays right for scaled views.
   const glm::dmat3 normalMatrix = glm::inverseTranspose(glm::dmat3(camera.view));
@@ -196,55 +240,78 @@ void Pipeline::Impl::run() {
   const cl_float16 proj = toFloat16RowMajor(camera.projection);
   const cl_float16 invProj = toFloat16RowMajor(glm::inverse(camera.projection));
   const float nearPlane = static_cast<float>(camera.nearPlane);
-  const float farPlane = std::isfinite(camera.farPlane) ? static_cast<float>(std::min(camera.farPlane, 3.0e38))
-                                                        : std::numeric_limits<float>::max();
+  const float farPlane = static_cast<float>(std::min(camera.farPlane, double(std::numeric_limits<float>::max())));
+  const cl_int mapping = s.roughnessMapping == RoughnessMapping::Linear ? 1 : 0;
+  const cl_int tracer = s.tracer == Tracer::Linear ? 1 : 0;
+  const cl_uint seed = s.seed;
+  const int batch = batchSize();
+  // Each ray's cone covers its share of the lobe among all rays the resolve combines.
+  const int reused = s.samplesPerPixel * (2 * s.reuseRadius + 1) * (2 * s.reuseRadius + 1);
+  const float coneScale = s.prefilter ? 1.0f / std::sqrt(float(reused)) : 0.0f;
 
   std::vector<cl::Event> uploads(5);
-  const bool useRoughnessImage = settings.constantRoughness < 0.0f;
+  const bool useRoughnessImage = s.constantRoughness < 0.0f;
   q.enqueueWriteBuffer(colorIn, CL_FALSE, 0, pixels * colorChannels * sizeof(float), inputs.at("color")->data.data(),
                        nullptr, &uploads[0]);
   q.enqueueWriteBuffer(depthIn, CL_FALSE, 0, pixels * sizeof(float), inputs.at("depth")->data.data(), nullptr,
                        &uploads[1]);
   q.enqueueWriteBuffer(normalIn, CL_FALSE, 0, pixels * 3 * sizeof(float), inputs.at("normal")->data.data(), nullptr,
                        &uploads[2]);
-  const cl_int zero = 0;
-  q.enqueueFillBuffer(rayCount, zero, 0, sizeof(cl_int), nullptr, &uploads[3]);
-  q.enqueueFillBuffer(hits, cl_float4{{0, 0, 0, 0}}, 0, pixels * sizeof(cl_float4), nullptr, &uploads[4]);
+  q.enqueueFillBuffer(rayCount, cl_int(0), 0, 2 * sizeof(cl_int), nullptr, &uploads[3]);
+  q.enqueueFillBuffer(accRadiance, cl_float4{{0, 0, 0, 0}}, 0, pixels * sizeof(cl_float4), nullptr, &uploads[4]);
+  uploads.emplace_back();
+  q.enqueueFillBuffer(accWeight, cl_float2{{0, 0}}, 0, pixels * sizeof(cl_float2), nullptr, &uploads.back());
   if (useRoughnessImage) {
     uploads.emplace_back();
     q.enqueueWriteBuffer(roughnessIn, CL_FALSE, 0, pixels * sizeof(float), inputs.at("roughness")->data.data(), nullptr,
                          &uploads.back());
   }
 
-  // HZB level 0 (planar depth) starts at offset 0 of the hzb buffer.
+  // HZB level 0 (planar depth) and colour pyramid level 0 start at offset 0 of their buffers.
   setArgs(setup, size, nearPlane, farPlane, normalMatrix16, colorIn, colorChannels, depthIn, normalIn, roughnessIn,
-          useRoughnessImage ? -1.0f : settings.constantRoughness, settings.maxRoughness, hzb, normals, color, rayList,
-          rayCount);
+          useRoughnessImage ? -1.0f : s.constantRoughness, s.maxRoughness, s.mirrorRoughness, cl_int(s.samplesPerPixel),
+          hzb, normals, colorPyramid, pixelRays, rayList, rayCount);
   cl::Event setupEvent;
   q.enqueueNDRangeKernel(setup, cl::NullRange, global2d, local2d, nullptr, &setupEvent);
 
-  std::vector<cl::Event> hzbEvents(levels.size() - 1);
+  std::vector<cl::Event> hzbEvents(levels.size() - 1), colorEvents(levels.size() - 1);
   for (size_t l = 1; l < levels.size(); ++l) {
+    const cl::NDRange levelRange(roundUp(levels[l].width, 8), roundUp(levels[l].height, 8));
     setArgs(hzbReduce, hzb, levelBuffer, static_cast<cl_int>(l));
-    q.enqueueNDRangeKernel(hzbReduce, cl::NullRange,
-                           cl::NDRange(roundUp(levels[l].width, 8), roundUp(levels[l].height, 8)), local2d, nullptr,
-                           &hzbEvents[l - 1]);
+    q.enqueueNDRangeKernel(hzbReduce, cl::NullRange, levelRange, local2d, nullptr, &hzbEvents[l - 1]);
+    setArgs(colorReduce, colorPyramid, levelBuffer, static_cast<cl_int>(l));
+    q.enqueueNDRangeKernel(colorReduce, cl::NullRange, levelRange, local2d, nullptr, &colorEvents[l - 1]);
   }
 
-  cl_int rays = 0;
-  q.enqueueReadBuffer(rayCount, CL_TRUE, 0, sizeof(cl_int), &rays);
-  times.tracedRays = rays;
+  cl_int counts[2] = {0, 0};  // listed pixels, rays
+  q.enqueueReadBuffer(rayCount, CL_TRUE, 0, sizeof(counts), counts);
+  const cl_int listed = counts[0];
 
-  cl::Event traceEvent;
-  if (rays > 0) {
+  std::vector<cl::Event> traceEvents, resolveEvents;
+  for (int first = 0; listed > 0 && first < s.samplesPerPixel; first += batch) {
     setArgs(trace, size, proj, invProj, nearPlane, farPlane, hzb, levelBuffer, static_cast<cl_int>(levels.size()),
-            normals, rayList, rays, settings.thicknessRelative, settings.maxIterations, hits);
-    q.enqueueNDRangeKernel(trace, cl::NullRange, cl::NDRange(roundUp(rays, 64)), cl::NDRange(64), nullptr, &traceEvent);
+            normals, rayList, listed, pixelRays, cl_int(batch), cl_int(first), seed, s.mirrorRoughness, mapping,
+            coneScale, tracer, s.linearStepPixels, s.thicknessRelative, s.maxIterations, s.edgeFade, colorPyramid,
+            rayHit, rayRadiance);
+    traceEvents.emplace_back();
+    q.enqueueNDRangeKernel(trace, cl::NullRange, cl::NDRange(roundUp(size_t(listed) * batch, 64)), cl::NDRange(64),
+                           nullptr, &traceEvents.back());
+    setArgs(accumulate, size, invProj, hzb, normals, pixelRays, cl_int(batch), cl_int(first), s.mirrorRoughness,
+            mapping, cl_int(s.reuseRadius), rayHit, rayRadiance, accRadiance, accWeight);
+    resolveEvents.emplace_back();
+    q.enqueueNDRangeKernel(accumulate, cl::NullRange, global2d, local2d, nullptr, &resolveEvents.back());
   }
-
-  setArgs(resolve, size, settings.edgeFade, hits, color, outRgba, outDistance);
-  cl::Event resolveEvent;
-  q.enqueueNDRangeKernel(resolve, cl::NullRange, global2d, local2d, nullptr, &resolveEvent);
+  // With the filter on, the resolve writes to an intermediate the filter reads.
+  setArgs(finalize, size, accRadiance, accWeight, s.denoise ? resolvedRgba : outRgba,
+          s.denoise ? resolvedDistance : outDistance);
+  resolveEvents.emplace_back();
+  q.enqueueNDRangeKernel(finalize, cl::NullRange, global2d, local2d, nullptr, &resolveEvents.back());
+  cl::Event denoiseEvent;
+  if (s.denoise) {
+    setArgs(denoise, size, s.mirrorRoughness, hzb, normals, pixelRays, resolvedRgba, resolvedDistance, outRgba,
+            outDistance);
+    q.enqueueNDRangeKernel(denoise, cl::NullRange, global2d, local2d, nullptr, &denoiseEvent);
+  }
 
   std::vector<cl::Event> downloads(2);
   q.enqueueReadBuffer(outRgba, CL_FALSE, 0, pixels * sizeof(cl_float4), reflection.data.data(), nullptr, &downloads[0]);
@@ -256,12 +323,16 @@ void Pipeline::Impl::run() {
     for (const auto& e : events) ms += eventMs(e);
     return ms;
   };
+  times.tracedRays = counts[1];
+  times.tracedPixels = listed;
   times.ms.clear();
   times.ms["upload"] = sum(uploads);
   times.ms["setup"] = eventMs(setupEvent);
   times.ms["hzb"] = sum(hzbEvents);
-  times.ms["trace"] = rays > 0 ? eventMs(traceEvent) : 0.0;
-  times.ms["resolve"] = eventMs(resolveEvent);
+  times.ms["color_mips"] = sum(colorEvents);
+  times.ms["trace"] = sum(traceEvents);
+  times.ms["resolve"] = sum(resolveEvents);
+  times.ms["denoise"] = s.denoise ? eventMs(denoiseEvent) : 0.0;
   times.ms["download"] = sum(downloads);
 }
 

@@ -41,3 +41,19 @@ inline float hzb_fetch(__global const float* hzb, __global const HzbLevel* level
   cell = clamp(cell, (int2)(0, 0), (int2)(l.width - 1, l.height - 1));
   return hzb[l.offset + cell.y * l.width + cell.x];
 }
+
+// View-space surface point of pixel `pix` at planar depth `depth`, and the unit viewing direction
+// (eye -> point); valid for perspective and orthographic cameras alike.
+inline float3 pixel_view_point(float16 inv_proj, int2 size, int2 pix, float depth, float3* view_dir) {
+  float2 ndc = pixel_to_ndc(convert_float2(pix) + 0.5f, size);
+  float3 a = unproject(inv_proj, ndc, -1.0f), b = unproject(inv_proj, ndc, 0.0f);
+  *view_dir = normalize(b - a);
+  return a + (b - a) * ((-depth - a.z) / (b.z - a.z));
+}
+
+// Confidence of a hit at screen position s: fades to 0 over `edge_fade` of the smaller screen side.
+inline float edge_confidence(float2 s, int2 size, float edge_fade) {
+  if (!(edge_fade > 0.0f)) return 1.0f;
+  float border = fmin(fmin(s.x, (float)size.x - s.x), fmin(s.y, (float)size.y - s.y));
+  return clamp(border / (edge_fade * (float)min(size.x, size.y)), 0.0f, 1.0f);
+}

@@ -1,24 +1,97 @@
-// Resolve: radiance at each mirror hit, faded near the screen edges where screen-space data runs
-// out. Output is premultiplied: rgb = radiance * A, A = confidence.
-__kernel void resolve_mirror(int2 size, float edge_fade, __global const float4* hits,
-                             __global const float4* color, __global float4* out_rgba,
-                             __global float* out_distance) {
+// Resolve: turns ray records into the reflection pass, one batch of samples at a time.
+//
+// Glossy pixels use the ratio estimator of Stachowiak ("Stochastic Screen-Space Reflections",
+// 2015): every ray of a similar neighbour is reused, weighted by this pixel's BRDF * cosine over
+// the pdf the ray was drawn with, and
+//   rgb = sum(w * c * L) / sum(w),  A = sum(w * c) / sum(w),  distance = sum(w * c * d) / sum(w * c)
+// with c the hit's confidence (0 for a miss) - the lobe-weighted integrals TraceSettings
+// documents. Mirror pixels take their single ray as it is. The sums accumulate over batches in
+// acc_radiance = (sum w c L, sum w c) and acc_weight = (sum w, sum w c d).
+
+// GGX BRDF * cosine for local view o and light l (normal +Z), without Fresnel.
+inline float ggx_brdf_cos(float3 o, float3 l, float alpha) {
+  float3 h = o + l;
+  float len = length(h);
+  if (!(len > 0.0f) || o.z <= 0.0f || l.z <= 0.0f) return 0.0f;
+  return ggx_d(h / len, alpha) * ggx_g2(o, l, alpha) / (4.0f * o.z);
+}
+
+// Neighbours must be the same surface for their rays to stand for this pixel's: similar depth
+// (relative) and normal.
+inline bool similar_surface(float depth_p, float3 n_p, float depth_q, float3 n_q) {
+  return fabs(depth_q - depth_p) <= 0.05f * depth_p && dot(n_p, n_q) >= 0.9f;
+}
+
+__kernel void resolve_accumulate(int2 size, float16 inv_proj, __global const float* depth,
+                                 __global const float4* normals, __global const int* pixel_rays,
+                                 int batch_size, int first_sample, float mirror_roughness,
+                                 int roughness_mapping, int reuse_radius, __global const float4* ray_hit,
+                                 __global const float4* ray_radiance, __global float4* acc_radiance,
+                                 __global float2* acc_weight) {
   int x = get_global_id(0), y = get_global_id(1);
   if (x >= size.x || y >= size.y) return;
   int i = y * size.x + x;
-  float4 h = hits[i];
-  if (!(h.w > 0.0f)) {
-    out_rgba[i] = (float4)(0.0f);
-    out_distance[i] = 0.0f;
-    return;
+  if (pixel_rays[i] <= first_sample) return;  // no ray in this batch: sky, too rough, or a mirror done
+
+  float4 nr = normals[i];
+  float3 v;
+  float3 p = pixel_view_point(inv_proj, size, (int2)(x, y), depth[i], &v);
+  float4 radiance = acc_radiance[i];
+  float2 weight = acc_weight[i];
+
+  if (nr.w <= mirror_roughness) {
+    if (first_sample == 0) {
+      float4 h = ray_hit[(size_t)i * batch_size];
+      bool hit = h.w >= 0.0f;
+      radiance = hit ? (float4)(ray_radiance[(size_t)i * batch_size].xyz * h.w, h.w) : (float4)(0.0f);
+      weight = (float2)(1.0f, hit ? h.w * length(h.xyz - p) : 0.0f);
+    }
+  } else {
+    float3 tx, ty;
+    basis_from_normal(nr.xyz, &tx, &ty);
+    float3 ol = (float3)(dot(-v, tx), dot(-v, ty), dot(-v, nr.xyz));
+    float alpha = fmax(roughness_to_alpha(nr.w, roughness_mapping), 1e-4f);
+    for (int dy = -reuse_radius; dy <= reuse_radius; ++dy) {
+      for (int dx = -reuse_radius; dx <= reuse_radius; ++dx) {
+        int qx = x + dx, qy = y + dy;
+        if (qx < 0 || qy < 0 || qx >= size.x || qy >= size.y) continue;
+        int q = qy * size.x + qx;
+        int count = min(pixel_rays[q] - first_sample, batch_size);
+        if (count <= 0 || (q != i && !similar_surface(depth[i], nr.xyz, depth[q], normals[q].xyz))) continue;
+        for (int s = 0; s < count; ++s) {
+          size_t r = (size_t)q * batch_size + s;
+          float4 rad = ray_radiance[r];
+          if (!(rad.w > 0.0f)) continue;  // a mirror ray (delta) or one never traced
+          float4 h = ray_hit[r];
+          bool hit = h.w >= 0.0f;
+          float3 l = hit ? normalize(h.xyz - p) : h.xyz;
+          float3 ll = (float3)(dot(l, tx), dot(l, ty), dot(l, nr.xyz));
+          float w = ggx_brdf_cos(ol, ll, alpha) / rad.w;
+          if (!(w > 0.0f) || !isfinite(w)) continue;
+          weight.x += w;
+          if (hit) {
+            radiance += (float4)(rad.xyz * (w * h.w), w * h.w);
+            weight.y += w * h.w * length(h.xyz - p);
+          }
+        }
+      }
+    }
   }
-  int2 hp = clamp(convert_int2(floor(h.xy)), (int2)(0, 0), size - 1);
-  float confidence = 1.0f;
-  if (edge_fade > 0.0f) {
-    float border = fmin(fmin(h.x, (float)size.x - h.x), fmin(h.y, (float)size.y - h.y));
-    confidence = clamp(border / (edge_fade * (float)min(size.x, size.y)), 0.0f, 1.0f);
-  }
-  float3 c = color[hp.y * size.x + hp.x].xyz;
-  out_rgba[i] = (float4)(c * confidence, confidence);
-  out_distance[i] = h.z;
+  acc_radiance[i] = radiance;
+  acc_weight[i] = weight;
+}
+
+__kernel void resolve_finalize(int2 size, __global const float4* acc_radiance, __global const float2* acc_weight,
+                               __global float4* out_rgba, __global float* out_distance) {
+  int x = get_global_id(0), y = get_global_id(1);
+  if (x >= size.x || y >= size.y) return;
+  int i = y * size.x + x;
+  float4 r = acc_radiance[i];
+  float2 w = acc_weight[i];
+  bool any = w.x > 0.0f && r.w > 0.0f;
+  float4 rgba = any ? r / w.x : (float4)(0.0f);
+  rgba.w = clamp(rgba.w, 0.0f, 1.0f);
+  out_rgba[i] = all(isfinite(rgba)) ? rgba : (float4)(0.0f);
+  float d = any ? w.y / r.w : 0.0f;
+  out_distance[i] = isfinite(d) ? d : 0.0f;
 }

@@ -1,6 +1,7 @@
 // Setup: turn the renderer's passes into what tracing needs, and list the pixels worth a ray.
 // Writes HZB level 0 (planar depth, SSRCL_NO_SURFACE for sky/invalid), view-space normals with
-// roughness in w, sanitized color, and appends traced pixels to ray_list.
+// roughness in w, sanitized color (colour pyramid level 0), each pixel's ray count (0 for sky and
+// pixels above max_roughness, 1 for mirror-like ones), and appends traced pixels to ray_list.
 
 // Radiance rule: NaN becomes 0, negatives 0, and values clamp at 1e20 so that weighted sums
 // in later stages cannot overflow float.
@@ -10,17 +11,17 @@ inline float sanitize_radiance(float v) {
   return isnan(v) ? 0.0f : clamp(v, 0.0f, SSRCL_MAX_RADIANCE);
 }
 
-// Runs in 2D work-groups; traced pixels are counted in local memory first so the global ray
-// counter sees one atomic per group instead of one per pixel.
+// Runs in 2D work-groups; traced pixels are counted in local memory first so the global counters
+// (ray_count[0] listed pixels, ray_count[1] rays) see one atomic per group instead of one per pixel.
 __kernel void setup(int2 size, float near_plane, float far_plane, float16 normal_matrix,
                     __global const float* color_in, int color_channels,
                     __global const float* depth_in,
                     __global const float* normal_in,
                     __global const float* roughness_in, float constant_roughness,
-                    float max_roughness,
+                    float max_roughness, float mirror_roughness, int samples_per_pixel,
                     __global float* depth_out, __global float4* normal_out, __global float4* color_out,
-                    __global int* ray_list, __global int* ray_count) {
-  __local int group_count, group_base;
+                    __global int* pixel_rays, __global int* ray_list, __global int* ray_count) {
+  __local int group_count, group_base, group_rays;
   int x = get_global_id(0), y = get_global_id(1);
   bool inside = x < size.x && y < size.y;
   int i = y * size.x + x;
@@ -44,14 +45,22 @@ __kernel void setup(int2 size, float near_plane, float far_plane, float16 normal
     depth_out[i] = surface ? d : SSRCL_NO_SURFACE;
     normal_out[i] = (float4)(nv, r);
     traced = surface && normal_ok && r <= max_roughness;
+    pixel_rays[i] = traced ? (r <= mirror_roughness ? 1 : samples_per_pixel) : 0;
   }
 
   bool leader = get_local_id(0) == 0 && get_local_id(1) == 0;
-  if (leader) group_count = 0;
+  if (leader) {
+    group_count = 0;
+    group_rays = 0;
+  }
   barrier(CLK_LOCAL_MEM_FENCE);
   int slot = traced ? atomic_inc(&group_count) : 0;
+  if (traced) atomic_add(&group_rays, pixel_rays[i]);
   barrier(CLK_LOCAL_MEM_FENCE);
-  if (leader) group_base = atomic_add(ray_count, group_count);
+  if (leader) {
+    group_base = atomic_add(&ray_count[0], group_count);
+    atomic_add(&ray_count[1], group_rays);
+  }
   barrier(CLK_LOCAL_MEM_FENCE);
   if (traced) ray_list[group_base + slot] = i;
 }

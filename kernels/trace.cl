@@ -1,4 +1,6 @@
-// Hierarchical Hi-Z trace of one mirror ray per listed pixel (FidelityFX SSSR style traversal).
+// Ray generation and tracing: one work-item per (listed pixel, sample). Mirror-like pixels get
+// one deterministic mirror ray; glossy pixels draw GGX visible-normal samples. Each ray is traced
+// through the depth buffer (hierarchical Hi-Z, or fine linear steps) and shaded at its hit.
 //
 // The ray is followed in screen space: pixel position s(t) = s0 + t * ds, t in [0, 1].
 // Q = P / w and k = 1 / w are affine in screen space for any projective camera (perspective or
@@ -12,6 +14,7 @@ typedef struct {
 inline float4 ray_q(const ScreenRay* r, float t) { return r->q0 + t * r->dq; }
 inline float ray_depth(const ScreenRay* r, float t) { float4 q = ray_q(r, t); return -q.z / q.w; }
 inline float3 ray_point(const ScreenRay* r, float t) { float4 q = ray_q(r, t); return q.xyz / q.w; }
+inline float2 ray_screen(const ScreenRay* r, float t) { return r->s0 + t * r->ds; }
 
 // t where the ray's depth equals d (a Moebius function of t, so one closed-form root).
 inline float ray_t_at_depth(const ScreenRay* r, float d) {
@@ -23,7 +26,7 @@ inline float ray_t_at_depth(const ScreenRay* r, float d) {
 // Parameter where the ray leaves the cell of `cell_size` pixels it occupies just after t. The
 // cell is looked up slightly ahead of t so a ray sitting on a boundary counts as having crossed it.
 inline float cell_exit(const ScreenRay* r, float t, float nudge, float cell_size, int2* cell_out) {
-  float2 p = r->s0 + (t + nudge) * r->ds;
+  float2 p = ray_screen(r, t + nudge);
   float2 cell = floor(p / cell_size);
   *cell_out = convert_int2(cell);
   float2 boundary = (cell + select((float2)(0.0f), (float2)(1.0f), isgreater(r->ds, (float2)(0.0f)))) * cell_size;
@@ -43,7 +46,6 @@ inline bool make_screen_ray(float16 proj, int2 size, float3 p0, float3 p1, Scree
   r->ds = ndc_to_pixel(h1.xy * k1, size) - r->s0;
   r->q0 = (float4)(p0 * k0, k0);
   r->dq = (float4)(p1 * k1, k1) - r->q0;
-  // Clip to the screen rectangle.
   float2 edge = select((float2)(0.0f), convert_float2(size), isgreater(r->ds, (float2)(0.0f)));
   float2 te = (edge - r->s0) / r->ds;
   te = select(te, (float2)(INFINITY), isless(fabs(r->ds), (float2)(1e-12f)));
@@ -55,83 +57,159 @@ inline bool make_screen_ray(float16 proj, int2 size, float3 p0, float3 p1, Scree
   return isfinite(r->s0.x) && isfinite(r->s0.y) && isfinite(r->ds.x) && isfinite(r->ds.y);
 }
 
+typedef struct {
+  int2 size;
+  __global const float* hzb;
+  __global const HzbLevel* levels;
+  int level_count;
+  __global const float4* normals;
+  float thickness_rel;
+  int max_iterations;
+} TraceScene;
+
 // A hit on a surface that faces away from the ray is a surface the ray cannot have reached.
-inline bool faces_ray(__global const float4* normals, int2 size, int2 cell, float3 dir) {
-  cell = clamp(cell, (int2)(0, 0), size - 1);
-  return dot(normals[cell.y * size.x + cell.x].xyz, dir) < 0.0f;
+inline bool faces_ray(const TraceScene* sc, int2 cell, float3 dir) {
+  cell = clamp(cell, (int2)(0, 0), sc->size - 1);
+  return dot(sc->normals[cell.y * sc->size.x + cell.x].xyz, dir) < 0.0f;
 }
 
-// hits[pixel] = (hit x, hit y in pixels, view-space distance, 1) or stays 0 on a miss.
-__kernel void trace_mirror(int2 size, float16 proj, float16 inv_proj, float near_plane, float far_plane,
-                           __global const float* hzb, __global const HzbLevel* levels, int level_count,
-                           __global const float4* normals, __global const int* ray_list, int ray_count,
-                           float thickness_rel, int max_iterations, __global float4* hits) {
-  int gid = get_global_id(0);
-  if (gid >= ray_count) return;
-  int i = ray_list[gid];
-  int2 pix = (int2)(i % size.x, i / size.x);
-
-  float d0 = hzb[i];
-  float3 n = normals[i].xyz;
-  float2 ndc = pixel_to_ndc(convert_float2(pix) + 0.5f, size);
-  // The pixel's viewing line, valid for perspective and orthographic cameras alike.
-  float3 a = unproject(inv_proj, ndc, -1.0f), b = unproject(inv_proj, ndc, 0.0f);
-  float3 v = normalize(b - a);
-  float3 p = a + (b - a) * ((-d0 - a.z) / (b.z - a.z));
-  if (dot(v, n) >= 0.0f) return;  // normal faces away from the viewer: no defined reflection
-  float3 dir = v - 2.0f * dot(v, n) * n;
-
-  // Segment end: at the near plane for rays toward the camera, at the far plane otherwise,
-  // capped so an infinite far plane still gives a finite end point.
-  float length_max = 1e6f * d0;
-  float len = dir.z > 0.0f ? (-near_plane * 1.001f - p.z) / dir.z
-            : dir.z < 0.0f ? (-far_plane - p.z) / dir.z : length_max;
-  len = fmin(len, length_max);
-  if (!(len > 0.0f)) return;
-
-  ScreenRay ray;
-  if (!make_screen_ray(proj, size, p, p + dir * len, &ray)) return;
-  float major = fmax(fabs(ray.ds.x), fabs(ray.ds.y));
-  if (!(major > 0.0f)) return;
+// Hierarchical traversal (FidelityFX SSSR style): climb while the ray stays in front of a cell's
+// nearest depth, descend where it may hit. Returns the hit's t, or a negative value on a miss.
+inline float trace_hiz(const TraceScene* sc, const ScreenRay* ray, float3 dir) {
+  float major = fmax(fabs(ray->ds.x), fabs(ray->ds.y));
   float nudge = 0.01f / major;  // a hundredth of a pixel along the major axis
-  bool deeper = ray.q0.z * ray.dq.w - ray.dq.z * ray.q0.w > 0.0f;  // depth grows with t
-
+  bool deeper = ray->q0.z * ray->dq.w - ray->dq.z * ray->q0.w > 0.0f;  // depth grows with t
   int2 cell;
-  float t = cell_exit(&ray, 0.0f, nudge, 1.0f, &cell);  // leave the origin pixel first
+  float t = cell_exit(ray, 0.0f, nudge, 1.0f, &cell);  // leave the origin pixel first
   int mip = 0;
-  for (int iter = 0; iter < max_iterations && t <= 1.0f; ++iter) {
-    float t_exit = cell_exit(&ray, t, nudge, (float)(1 << mip), &cell);
-    float d_min = hzb_fetch(hzb, levels, mip, cell);
-    float d_now = ray_depth(&ray, t);
+  for (int iter = 0; iter < sc->max_iterations && t <= 1.0f; ++iter) {
+    float t_exit = cell_exit(ray, t, nudge, (float)(1 << mip), &cell);
+    float d_min = hzb_fetch(sc->hzb, sc->levels, mip, cell);
+    float d_now = ray_depth(ray, t);
     if (d_now < d_min) {
       // In front of everything in this cell: does the ray reach the cell's nearest depth inside it?
-      float t_cross = (deeper && d_min < SSRCL_NO_SURFACE) ? ray_t_at_depth(&ray, d_min) : INFINITY;
+      float t_cross = (deeper && d_min < SSRCL_NO_SURFACE) ? ray_t_at_depth(ray, d_min) : INFINITY;
       if (t_cross <= t_exit) {
         if (mip > 0) {
           t = fmax(t, t_cross);
           --mip;
           continue;
         }
-        if (t_cross <= 1.0f && faces_ray(normals, size, cell, dir)) {
-          t = fmax(t, t_cross);
-          float2 s = ray.s0 + t * ray.ds;
-          hits[i] = (float4)(s, length(ray_point(&ray, t) - p), 1.0f);
-          return;
-        }
+        if (t_cross <= 1.0f && faces_ray(sc, cell, dir)) return fmax(t, t_cross);
         t = t_exit;
       } else {
         t = t_exit;
-        mip = min(mip + 1, level_count - 1);
+        mip = min(mip + 1, sc->level_count - 1);
       }
     } else if (mip > 0) {
       --mip;  // possibly behind something in this cell: look closer
-    } else if (d_min < SSRCL_NO_SURFACE && d_now - d_min <= thickness_rel * d_min &&
-               faces_ray(normals, size, cell, dir)) {
-      float2 s = ray.s0 + t * ray.ds;
-      hits[i] = (float4)(s, length(ray_point(&ray, t) - p), 1.0f);
-      return;
+    } else if (d_min < SSRCL_NO_SURFACE && d_now - d_min <= sc->thickness_rel * d_min && faces_ray(sc, cell, dir)) {
+      return t;
     } else {
       t = t_exit;  // behind the surface by more than its thickness: the ray passes behind it
     }
   }
+  return -1.0f;
+}
+
+// Fixed steps of `step_pixels` along the major screen axis, testing the full-resolution depth at
+// every step: no hierarchy to skip thin features, the reference tracer.
+inline float trace_linear(const TraceScene* sc, const ScreenRay* ray, float3 dir, float step_pixels) {
+  float major = fmax(fabs(ray->ds.x), fabs(ray->ds.y));
+  int2 cell;
+  float t0 = cell_exit(ray, 0.0f, 0.01f / major, 1.0f, &cell);  // leave the origin pixel first
+  float dt = step_pixels / major;
+  int steps = (int)ceil((1.0f - t0) / dt);
+  for (int k = 0; k <= steps; ++k) {
+    float t = fmin(t0 + (float)k * dt, 1.0f);
+    cell = clamp(convert_int2(floor(ray_screen(ray, t))), (int2)(0, 0), sc->size - 1);
+    float d = sc->hzb[cell.y * sc->size.x + cell.x];
+    float d_now = ray_depth(ray, t);
+    if (d < SSRCL_NO_SURFACE && d_now >= d && d_now - d <= sc->thickness_rel * d && faces_ray(sc, cell, dir))
+      return t;
+  }
+  return -1.0f;
+}
+
+// Ray records, per (pixel, sample slot of this batch):
+//   ray_hit      hit: (view-space hit point, confidence >= 0); miss: (direction, -1)
+//   ray_radiance (rgb at the hit, pdf of the direction); pdf 0 marks a ray that is a delta
+//                (mirror) or was not traced, which neighbours must not reuse.
+__kernel void trace_rays(int2 size, float16 proj, float16 inv_proj, float near_plane, float far_plane,
+                         __global const float* hzb, __global const HzbLevel* levels, int level_count,
+                         __global const float4* normals, __global const int* ray_list, int listed,
+                         __global const int* pixel_rays, int batch_size, int first_sample, uint seed,
+                         float mirror_roughness, int roughness_mapping, float cone_scale, int tracer, float linear_step,
+                         float thickness_rel, int max_iterations, float edge_fade,
+                         __global const float4* color_pyramid, __global float4* ray_hit,
+                         __global float4* ray_radiance) {
+  int gid = get_global_id(0);
+  if (gid >= listed * batch_size) return;
+  int i = ray_list[gid / batch_size];
+  int slot = gid % batch_size;
+  int sample = first_sample + slot;
+  if (sample >= pixel_rays[i]) return;
+  size_t record = (size_t)i * batch_size + slot;
+  ray_hit[record] = (float4)(0.0f, 0.0f, 0.0f, -1.0f);
+  ray_radiance[record] = (float4)(0.0f);
+
+  int2 pix = (int2)(i % size.x, i / size.x);
+  float4 nr = normals[i];
+  float3 n = nr.xyz;
+  float3 v;
+  float3 p = pixel_view_point(inv_proj, size, pix, hzb[i], &v);
+  float3 o = -v;
+  if (dot(o, n) <= 0.0f) return;  // normal faces away from the viewer: no defined reflection
+
+  // Mirror-like pixels have one ray, the exact mirror direction.
+  bool mirror = nr.w <= mirror_roughness;
+  float alpha = fmax(roughness_to_alpha(nr.w, roughness_mapping), 1e-4f);
+  float3 dir;
+  float pdf = 0.0f;
+  if (mirror) {
+    dir = 2.0f * dot(o, n) * n - o;
+  } else {
+    float3 tx, ty;
+    basis_from_normal(n, &tx, &ty);
+    float3 ol = (float3)(dot(o, tx), dot(o, ty), dot(o, n));
+    float3 h = ggx_sample_vndf(ol, alpha, sample_2d(i, sample, seed));
+    float3 ll = 2.0f * dot(ol, h) * h - ol;
+    if (ll.z <= 0.0f) return;  // below the surface: zero BRDF weight, nothing to trace
+    pdf = ggx_vndf_reflection_pdf(ol, ll, alpha);
+    dir = normalize(ll.x * tx + ll.y * ty + ll.z * n);
+  }
+  ray_hit[record] = (float4)(dir, -1.0f);
+  ray_radiance[record] = (float4)(0.0f, 0.0f, 0.0f, pdf);
+
+  // Segment end: at the near plane for rays toward the camera, at the far plane otherwise,
+  // capped so an infinite far plane still gives a finite end point.
+  float depth = -p.z;
+  float length_max = 1e6f * depth;
+  float len = dir.z > 0.0f ? (-near_plane * 1.001f - p.z) / dir.z
+            : dir.z < 0.0f ? (-far_plane - p.z) / dir.z : length_max;
+  len = fmin(len, length_max);
+  if (!(len > 0.0f)) return;
+  ScreenRay ray;
+  if (!make_screen_ray(proj, size, p, p + dir * len, &ray)) return;
+  if (!(fmax(fabs(ray.ds.x), fabs(ray.ds.y)) > 0.0f)) return;
+
+  TraceScene sc = {size, hzb, levels, level_count, normals, thickness_rel, max_iterations};
+  float t = tracer == 1 ? trace_linear(&sc, &ray, dir, linear_step) : trace_hiz(&sc, &ray, dir);
+  if (t < 0.0f) return;
+
+  float2 s = ray_screen(&ray, t);
+  float3 hit = ray_point(&ray, t);
+  float4 radiance;
+  if (cone_scale > 0.0f && !mirror) {
+    // Prefiltered lookup: the mip whose texels match the footprint of this ray's share of the
+    // lobe (a cone of tangent alpha * cone_scale) at the hit distance.
+    float px_per_unit = 0.5f * (float)size.y * fabs(proj.s5) * ray_q(&ray, t).w;
+    float footprint = 2.0f * length(hit - p) * alpha * cone_scale * px_per_unit;
+    radiance = pyramid_sample(color_pyramid, levels, level_count, s, log2(fmax(footprint, 1.0f)));
+  } else {
+    int2 c = clamp(convert_int2(floor(s)), (int2)(0, 0), size - 1);
+    radiance = color_pyramid[c.y * size.x + c.x];
+  }
+  ray_hit[record] = (float4)(hit, edge_confidence(s, size, edge_fade));
+  ray_radiance[record] = (float4)(radiance.xyz, pdf);
 }

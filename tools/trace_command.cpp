@@ -6,6 +6,7 @@
 #include "commands.hpp"
 #include "device_option.hpp"
 #include "exit_codes.hpp"
+#include "settings_options.hpp"
 #include "ssrcl/ssrcl.hpp"
 
 namespace ssrcl::cli {
@@ -15,7 +16,7 @@ struct TraceOptions {
   std::string input, output, camera, device;
   GBufferSource source;
   float roughness = -1.0f;
-  TraceSettings settings;
+  SettingsOptions settings;
   bool stats = false;
 };
 
@@ -50,7 +51,7 @@ int runTrace(TraceOptions& o) {
   pipeline.setImage("normal", g.normal);
   if (!g.roughness.empty()) pipeline.setImage("roughness", g.roughness);
   pipeline.setCamera(camera);
-  pipeline.settings() = o.settings;
+  pipeline.settings() = o.settings.resolve();
   pipeline.settings().constantRoughness = o.roughness;
   pipeline.commit();
   pipeline.execute();
@@ -64,7 +65,8 @@ int runTrace(TraceOptions& o) {
   if (o.stats) {
     const StageTimes& t = pipeline.stageTimes();
     std::cerr << "device: " << device.info().name << "\n"
-              << "rays traced: " << t.tracedRays << " of " << size_t(camera.width) * camera.height << " pixels\n";
+              << "pixels traced: " << t.tracedPixels << " of " << size_t(camera.width) * camera.height
+              << ", rays: " << t.tracedRays << "\n";
     for (const auto& [stage, ms] : t.ms)
       std::cerr << "  " << std::left << std::setw(9) << stage << std::right << std::fixed << std::setprecision(3)
                 << std::setw(10) << ms << " ms\n";
@@ -99,23 +101,7 @@ Action addTraceCommand(CLI::App& app) {
   cmd->add_option("--roughness", o->roughness, "Constant roughness for every pixel instead of a channel")
       ->group(in)
       ->check(CLI::Range(0.0f, 1.0f));
-  auto* tr = "Tracing";
-  cmd->add_option("--max-roughness", o->settings.maxRoughness, "Pixels rougher than this get no ray (A = 0)")
-      ->group(tr)
-      ->capture_default_str()
-      ->check(CLI::Range(0.0f, 1.0f));
-  cmd->add_option("--thickness", o->settings.thicknessRelative, "Surface thickness relative to its depth")
-      ->group(tr)
-      ->capture_default_str()
-      ->check(CLI::Range(1e-6f, 10.0f));
-  cmd->add_option("--max-iterations", o->settings.maxIterations, "Hi-Z traversal steps per ray")
-      ->group(tr)
-      ->capture_default_str()
-      ->check(CLI::Range(1, 1 << 20));
-  cmd->add_option("--edge-fade", o->settings.edgeFade, "Fraction of the screen over which A fades at its edges")
-      ->group(tr)
-      ->capture_default_str()
-      ->check(CLI::Range(0.0f, 0.5f));
+  addSettingsOptions(*cmd, o->settings);
   cmd->add_flag("--stats", o->stats, "Print per-stage device times (OpenCL profiling) to stderr");
   return [o] { return runTrace(*o); };
 }

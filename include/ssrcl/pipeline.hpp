@@ -1,4 +1,5 @@
 #pragma once
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <string>
@@ -9,7 +10,25 @@
 
 namespace ssrcl {
 
+enum class Tracer {
+  HiZ,     // hierarchical min-depth traversal (default)
+  Linear,  // fixed sub-pixel steps; slow, the most thorough
+};
+
+enum class RoughnessMapping {
+  Squared,  // GGX alpha = roughness^2 (Cycles, EEVEE, Unreal, most renderers)
+  Linear,   // alpha = roughness
+};
+
 // Reflection-pass settings. Distances are in view-space units unless stated.
+//
+// What the pass estimates for a pixel with view direction o, normal n and GGX alpha:
+//   rgb = integral of f(o,l) (n.l) L(l) V(l) dl / integral of f(o,l) (n.l) dl
+//   A   = integral of f(o,l) (n.l) V(l) dl / integral of f(o,l) (n.l) dl
+// with f = D G2 / (4 (n.o)(n.l)) (GGX, height-correlated Smith, no Fresnel) and V(l) = 1 where
+// the reflected ray finds a surface on screen (times the screen-edge fade). So rgb is incident
+// radiance averaged over the specular lobe, premultiplied by the found fraction A, and
+// `rgb + environment * (1 - A)` completes it. Mirror pixels are the limit alpha -> 0.
 struct TraceSettings {
   // Hits count when the ray is at most this far behind the depth buffer, relative to the
   // surface's depth (scale-aware: 0.02 = 2% of the depth at the hit).
@@ -18,12 +37,32 @@ struct TraceSettings {
   float maxRoughness = 1.0f;        // pixels rougher than this get no ray and A = 0
   float edgeFade = 0.05f;           // fraction of the screen's smaller side over which A fades out
   float constantRoughness = -1.0f;  // >= 0 overrides the roughness image
+
+  int samplesPerPixel = 4;     // rays per glossy pixel
+  uint32_t seed = 0;           // same inputs and seed, same output (on one device)
+  RoughnessMapping roughnessMapping = RoughnessMapping::Squared;
+  float mirrorRoughness = 0.02f;  // at or below: one deterministic mirror ray, no reuse
+  int reuseRadius = 1;         // resolve reuses rays of (2r+1)^2 neighbours (Stachowiak); 0 = own only
+  bool prefilter = true;       // rough hits read a color mip matched to the ray's cone footprint
+  Tracer tracer = Tracer::HiZ;
+  float linearStepPixels = 0.5f;  // Tracer::Linear step along the ray's major screen axis
+  bool denoise = false;           // edge-aware spatial filter after the resolve
 };
+
+// Named bundles of the settings above:
+//   "medium"    (the default TraceSettings) Hi-Z, 4 rays, 3x3 ray reuse, prefiltered colour.
+//   "reference" Linear march at half-pixel steps, 256 rays per pixel, no reuse, no prefilter, no
+//               filter: the best answer screen-space information allows, the yardstick.
+// Throws Error(InvalidArgument) for an unknown name.
+TraceSettings qualityPreset(const std::string& name);
 
 // Per-stage device time of the last execute(), from OpenCL profiling events (milliseconds).
 struct StageTimes {
-  std::map<std::string, double> ms;  // "upload", "setup", "hzb", "trace", "resolve", "download"
-  long long tracedRays = 0;
+  // "upload", "setup", "hzb", "color_mips", "trace", "resolve", "download"
+  std::map<std::string, double> ms;
+  long long tracedPixels = 0;  // pixels that got rays (not sky, not above max roughness)
+  long long tracedRays = 0;    // rays: one per mirror-like pixel, samplesPerPixel per glossy one
+
 };
 
 // The SSR pipeline, shaped like an OIDN filter:

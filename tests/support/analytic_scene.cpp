@@ -22,13 +22,6 @@ dvec3 rotateY(const dvec3& v, double a) {
   return {c * v.x + s * v.z, v.y, -s * v.x + c * v.z};
 }
 
-void planeAxes(const dvec3& n, dvec3& u, dvec3& v) {
-  dvec3 c = glm::cross(n, dvec3(0, 0, 1));
-  if (glm::length(c) < 1e-6) c = glm::cross(n, dvec3(1, 0, 0));
-  u = glm::normalize(c);
-  v = glm::cross(u, n);
-}
-
 // Smallest root of |o + t d - c|^2 = r^2 above tMin (d unit), in the stable form.
 double sphereT(const Primitive& s, const Ray& ray, double tMin) {
   const dvec3 oc = ray.origin - s.center;
@@ -84,6 +77,13 @@ double boxT(const Primitive& b, const Ray& ray, double tMin, dvec3& localNormal)
 }
 
 }  // namespace
+
+void planeAxes(const dvec3& n, dvec3& u, dvec3& v) {
+  dvec3 c = glm::cross(n, dvec3(0, 0, 1));
+  if (glm::length(c) < 1e-6) c = glm::cross(n, dvec3(1, 0, 0));
+  u = glm::normalize(c);
+  v = glm::cross(u, n);
+}
 
 Primitive plane(const std::string& name, dvec3 point, dvec3 normal, Material m) {
   Primitive p;
@@ -229,6 +229,7 @@ Hit intersect(const Scene& scene, const Ray& ray, double tMin) {
 dvec3 colorAt(const Scene& scene, const Hit& hit) {
   if (!hit) return scene.skyColor;
   const Material& m = scene.primitives[std::size_t(hit.primitive)].material;
+  if (!m.textured) return m.base;
   const double k = 2.0 * kPi / m.period;
   // Two oblique directions so every surface orientation sees variation.
   const double s1 = k * glm::dot(hit.position, glm::normalize(dvec3(0.8, 0.45, 0.4)));

@@ -20,11 +20,13 @@ inline constexpr double kSkyDepth = 1e10;
 
 // Colour = base * pattern(world position), pattern = 0.6 + 0.2 sin(k1.p + a_c) + 0.2 sin(k2.p + b_c)
 // with |k1| = |k2| = 2 pi / period and per-channel phases: smooth at pixel scale, yet a hit a few
-// pixels off the true point reads a different colour. See colorAt().
+// pixels off the true point reads a different colour. See colorAt(). Untextured: colour = base
+// everywhere (a constant-radiance emitter for glossy truth).
 struct Material {
   glm::dvec3 base{0.8};
   double roughness = 0.0;
   double period = 1.0;  // world units; ~25-50 pixels on the presets' objects at 480x270
+  bool textured = true;
 };
 
 struct Primitive {
@@ -40,6 +42,7 @@ struct Primitive {
 };
 // Rectangle/disk in-plane axes: u = normalize(cross(normal, +Z)) (or +X when normal ~ Z),
 // v = cross(u, normal); for a floor (normal +Y) u = +X and v = +Z.
+void planeAxes(const glm::dvec3& normal, glm::dvec3& u, glm::dvec3& v);
 
 Primitive plane(const std::string& name, glm::dvec3 point, glm::dvec3 normal, Material m);
 Primitive rectangle(const std::string& name, glm::dvec3 center, glm::dvec3 normal, double halfU, double halfV,

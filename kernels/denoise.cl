@@ -1,0 +1,42 @@
+// Optional edge-aware spatial filter of the resolved glossy pass: a Gaussian whose radius grows
+// with roughness (rougher lobes vary slowly), stopped at depth and normal edges so reflections
+// do not bleed across objects. Mirror-like and untraced pixels pass through unchanged.
+__kernel void denoise(int2 size, float mirror_roughness, __global const float* depth,
+                      __global const float4* normals, __global const int* pixel_rays,
+                      __global const float4* in_rgba, __global const float* in_distance,
+                      __global float4* out_rgba, __global float* out_distance) {
+  int x = get_global_id(0), y = get_global_id(1);
+  if (x >= size.x || y >= size.y) return;
+  int i = y * size.x + x;
+  float4 nr = normals[i];
+  if (pixel_rays[i] == 0 || nr.w <= mirror_roughness) {
+    out_rgba[i] = in_rgba[i];
+    out_distance[i] = in_distance[i];
+    return;
+  }
+  int radius = clamp((int)(nr.w * 6.0f + 0.5f), 1, 4);
+  float sigma2 = 0.5f * (float)(radius * radius);
+  float d = depth[i];
+  float4 sum = (float4)(0.0f);
+  float weights = 0.0f, dist_sum = 0.0f, dist_weights = 0.0f;
+  for (int dy = -radius; dy <= radius; ++dy) {
+    for (int dx = -radius; dx <= radius; ++dx) {
+      int qx = x + dx, qy = y + dy;
+      if (qx < 0 || qy < 0 || qx >= size.x || qy >= size.y) continue;
+      int q = qy * size.x + qx;
+      float4 nq = normals[q];
+      if (pixel_rays[q] == 0 || nq.w <= mirror_roughness) continue;
+      float w = exp(-(float)(dx * dx + dy * dy) / (2.0f * sigma2));
+      w *= exp(-fabs(depth[q] - d) / (0.01f * d));                // same surface, depth-wise
+      w *= pow(fmax(dot(nr.xyz, nq.xyz), 0.0f), 64.0f);           // same orientation
+      w *= exp(-fabs(nq.w - nr.w) * 10.0f);                        // similar lobe width
+      float4 c = in_rgba[q];
+      sum += w * c;
+      weights += w;
+      dist_sum += w * c.w * in_distance[q];
+      dist_weights += w * c.w;
+    }
+  }
+  out_rgba[i] = sum / weights;  // weights >= 1: the centre pixel always counts
+  out_distance[i] = dist_weights > 0.0f ? dist_sum / dist_weights : 0.0f;
+}

@@ -1,0 +1,69 @@
+// GGX (Trowbridge-Reitz) microfacet lobe in a local frame where the normal is +Z.
+// o is the unit direction toward the viewer, l toward the light (the reflected ray), both local.
+// Roughness maps to alpha before it reaches these functions (alpha = roughness^2 by default).
+
+#define SSRCL_PI 3.14159265358979f
+
+// Smith's Lambda for GGX; w.z is the cosine to the normal.
+inline float ggx_lambda(float3 w, float alpha) {
+  float c2 = w.z * w.z;
+  if (c2 <= 0.0f) return INFINITY;
+  float tan2 = fmax(1.0f - c2, 0.0f) / c2;
+  return 0.5f * (sqrt(1.0f + alpha * alpha * tan2) - 1.0f);
+}
+
+inline float ggx_g1(float3 w, float alpha) { return w.z > 0.0f ? 1.0f / (1.0f + ggx_lambda(w, alpha)) : 0.0f; }
+
+// Height-correlated masking-shadowing.
+inline float ggx_g2(float3 o, float3 l, float alpha) {
+  return (o.z > 0.0f && l.z > 0.0f) ? 1.0f / (1.0f + ggx_lambda(o, alpha) + ggx_lambda(l, alpha)) : 0.0f;
+}
+
+inline float ggx_d(float3 h, float alpha) {
+  float a2 = alpha * alpha;
+  float c2 = h.z * h.z;
+  float k = c2 * (a2 - 1.0f) + 1.0f;
+  return h.z > 0.0f ? a2 / (SSRCL_PI * k * k) : 0.0f;
+}
+
+// Density of the reflected direction l when h is drawn from the visible-normal distribution:
+// D_o(h) / (4 o.h) = G1(o) D(h) / (4 o.z). Zero for an undefined half vector.
+inline float ggx_vndf_reflection_pdf(float3 o, float3 l, float alpha) {
+  float3 h = o + l;
+  float len = length(h);
+  if (!(len > 0.0f) || o.z <= 0.0f) return 0.0f;
+  h /= len;
+  return ggx_g1(o, alpha) * ggx_d(h, alpha) / (4.0f * o.z);
+}
+
+// Visible-normal sampling (Heitz 2018, "Sampling the GGX Distribution of Visible Normals"):
+// stretch the view to the unit-roughness configuration, sample the projected hemisphere there,
+// unstretch. Stable for alpha -> 0 (returns +Z) and for grazing o.
+inline float3 ggx_sample_vndf(float3 o, float alpha, float2 u) {
+  float3 vh = normalize((float3)(alpha * o.x, alpha * o.y, o.z));
+  float lensq = vh.x * vh.x + vh.y * vh.y;
+  float3 t1 = lensq > 0.0f ? (float3)(-vh.y, vh.x, 0.0f) * rsqrt(lensq) : (float3)(1.0f, 0.0f, 0.0f);
+  float3 t2 = cross(vh, t1);
+  float r = sqrt(u.x);
+  float phi = 2.0f * SSRCL_PI * u.y;
+  float p1 = r * cos(phi);
+  float p2 = r * sin(phi);
+  float s = 0.5f * (1.0f + vh.z);
+  p2 = (1.0f - s) * sqrt(fmax(1.0f - p1 * p1, 0.0f)) + s * p2;
+  float3 nh = p1 * t1 + p2 * t2 + sqrt(fmax(1.0f - p1 * p1 - p2 * p2, 0.0f)) * vh;
+  return normalize((float3)(alpha * nh.x, alpha * nh.y, fmax(nh.z, 0.0f)));
+}
+
+// Orthonormal basis around unit n (Duff et al. 2017, branchless).
+inline void basis_from_normal(float3 n, float3* t, float3* b) {
+  float sign = n.z >= 0.0f ? 1.0f : -1.0f;
+  float a = -1.0f / (sign + n.z);
+  float c = n.x * n.y * a;
+  *t = (float3)(1.0f + sign * n.x * n.x * a, sign * c, -sign * n.x);
+  *b = (float3)(c, sign + n.y * n.y * a, -n.y);
+}
+
+// Roughness to alpha: Cycles and most renderers square it (mapping 0); mapping 1 is linear.
+inline float roughness_to_alpha(float roughness, int mapping) {
+  return mapping == 1 ? roughness : roughness * roughness;
+}

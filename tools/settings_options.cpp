@@ -1,0 +1,80 @@
+#include "settings_options.hpp"
+
+namespace ssrcl::cli {
+
+TraceSettings SettingsOptions::resolve() const {
+  TraceSettings s = qualityPreset(quality);
+  auto apply = [](auto& field, const auto& value) {
+    if (value) field = *value;
+  };
+  apply(s.maxRoughness, maxRoughness);
+  apply(s.thicknessRelative, thickness);
+  apply(s.edgeFade, edgeFade);
+  apply(s.mirrorRoughness, mirrorRoughness);
+  apply(s.linearStepPixels, linearStep);
+  apply(s.maxIterations, maxIterations);
+  apply(s.samplesPerPixel, spp);
+  apply(s.reuseRadius, reuseRadius);
+  apply(s.seed, seed);
+  apply(s.prefilter, prefilter);
+  apply(s.denoise, denoise);
+  if (roughnessMapping)
+    s.roughnessMapping = *roughnessMapping == "linear" ? RoughnessMapping::Linear : RoughnessMapping::Squared;
+  if (tracer) s.tracer = *tracer == "linear" ? Tracer::Linear : Tracer::HiZ;
+  return s;
+}
+
+void addSettingsOptions(CLI::App& cmd, SettingsOptions& o) {
+  const char* q = "Quality";
+  cmd.add_option("--quality", o.quality,
+                 "Preset: medium (Hi-Z, 4 rays, 3x3 reuse) or reference (linear march, 256 rays)")
+      ->group(q)
+      ->capture_default_str()
+      ->check(CLI::IsMember({"medium", "reference"}));
+  cmd.add_option("--spp", o.spp, "Rays per glossy pixel")->group(q)->check(CLI::Range(1, 65536));
+  cmd.add_option("--seed", o.seed, "Seed of the sample sequence (same seed, same output)")->group(q);
+  cmd.add_option("--tracer", o.tracer, "hiz (hierarchical) or linear (fine steps)")
+      ->group(q)
+      ->check(CLI::IsMember({"hiz", "linear"}));
+  cmd.add_option("--linear-step", o.linearStep, "Step of the linear tracer, in pixels")
+      ->group(q)
+      ->check(CLI::Range(0.05f, 8.0f));
+  cmd.add_option("--max-iterations", o.maxIterations, "Hi-Z traversal steps per ray")
+      ->group(q)
+      ->check(CLI::Range(1, 1 << 20));
+  cmd.add_option("--reuse-radius", o.reuseRadius, "Resolve reuses rays of (2r+1)^2 neighbours; 0 = own rays only")
+      ->group(q)
+      ->check(CLI::Range(0, 8));
+  cmd.add_flag_callback(
+         "--prefilter", [&o] { o.prefilter = true; }, "Rough hits read a colour mip matched to the ray's cone")
+      ->group(q);
+  cmd.add_flag_callback(
+         "--no-prefilter", [&o] { o.prefilter = false; }, "Rough hits read full-resolution colour")
+      ->group(q);
+  cmd.add_flag_callback(
+         "--denoise", [&o] { o.denoise = true; }, "Edge-aware spatial filter after the resolve")
+      ->group(q);
+  cmd.add_flag_callback(
+         "--no-denoise", [&o] { o.denoise = false; }, "No spatial filter")
+      ->group(q);
+
+  const char* m = "Surfaces";
+  cmd.add_option("--max-roughness", o.maxRoughness, "Pixels rougher than this get no ray (A = 0)")
+      ->group(m)
+      ->check(CLI::Range(0.0f, 1.0f));
+  cmd.add_option("--mirror-roughness", o.mirrorRoughness, "At or below: one exact mirror ray per pixel")
+      ->group(m)
+      ->check(CLI::Range(0.0f, 1.0f));
+  cmd.add_option("--roughness-mapping", o.roughnessMapping,
+                 "GGX alpha = roughness^2 (squared, Cycles) or roughness (linear)")
+      ->group(m)
+      ->check(CLI::IsMember({"squared", "linear"}));
+  cmd.add_option("--thickness", o.thickness, "Surface thickness relative to its depth (default 0.02)")
+      ->group(m)
+      ->check(CLI::Range(1e-6f, 10.0f));
+  cmd.add_option("--edge-fade", o.edgeFade, "Fraction of the screen over which A fades at its edges (default 0.05)")
+      ->group(m)
+      ->check(CLI::Range(0.0f, 0.5f));
+}
+
+}  // namespace ssrcl::cli
