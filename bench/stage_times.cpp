@@ -1,5 +1,6 @@
 // Per-stage device time (OpenCL profiling events) of the mirror pipeline on an analytic scene:
-//   ssrcl_stage_times [scene] [width] [height] [repetitions] [device]
+//   ssrcl_stage_times [scene] [width] [height] [repetitions] [device] [roughness] [quality]
+// roughness >= 0 makes every surface that rough (the analytic scenes are mirrors).
 // Prints min and median over the repetitions after one warm-up run (kernel compilation).
 #include <algorithm>
 #include <cstdlib>
@@ -17,6 +18,8 @@ int main(int argc, char** argv) {
   const int height = argc > 3 ? std::atoi(argv[3]) : 1080;
   const int repetitions = argc > 4 ? std::max(1, std::atoi(argv[4])) : 5;
   const std::string deviceChoice = argc > 5 ? argv[5] : "default";
+  const float roughness = argc > 6 ? float(std::atof(argv[6])) : -1.0f;
+  const std::string quality = argc > 7 ? argv[7] : "medium";
   try {
     ssrcl::test::Scene scene = ssrcl::test::makeScene(sceneName);
     ssrcl::Camera camera = ssrcl::test::makeCamera(scene.view, width, height);
@@ -31,6 +34,8 @@ int main(int argc, char** argv) {
     p.setImage("normal", g.normal);
     p.setImage("roughness", g.roughness);
     p.setCamera(camera);
+    p.settings() = ssrcl::qualityPreset(quality);
+    p.settings().constantRoughness = roughness;
     p.commit();
     p.execute();  // warm-up
 
@@ -45,7 +50,10 @@ int main(int argc, char** argv) {
       samples["total"].push_back(total);
     }
     std::cout << "device: " << device.info().name << "\nscene: " << sceneName << " " << width << "x" << height
-              << ", rays traced: " << p.stageTimes().tracedRays << ", repetitions: " << repetitions << "\n"
+              << ", quality " << quality << ", roughness "
+              << (roughness >= 0 ? std::to_string(roughness) : std::string("as rendered"))
+              << ", pixels traced: " << p.stageTimes().tracedPixels << ", rays: " << p.stageTimes().tracedRays
+              << ", repetitions: " << repetitions << "\n"
               << std::left << std::setw(10) << "stage" << std::right << std::setw(12) << "min ms" << std::setw(12)
               << "median ms"
               << "\n";

@@ -5,10 +5,11 @@
 #define SSRCL_PI 3.14159265358979f
 
 // Smith's Lambda for GGX; w.z is the cosine to the normal.
+// sin^2 is taken from x and y rather than 1 - cos^2, which cancels near the normal.
 inline float ggx_lambda(float3 w, float alpha) {
   float c2 = w.z * w.z;
   if (c2 <= 0.0f) return INFINITY;
-  float tan2 = fmax(1.0f - c2, 0.0f) / c2;
+  float tan2 = (w.x * w.x + w.y * w.y) / c2;
   return 0.5f * (sqrt(1.0f + alpha * alpha * tan2) - 1.0f);
 }
 
@@ -19,10 +20,10 @@ inline float ggx_g2(float3 o, float3 l, float alpha) {
   return (o.z > 0.0f && l.z > 0.0f) ? 1.0f / (1.0f + ggx_lambda(o, alpha) + ggx_lambda(l, alpha)) : 0.0f;
 }
 
+// cos^2 (alpha^2 - 1) + 1 written as alpha^2 cos^2 + sin^2: exact as alpha -> 0.
 inline float ggx_d(float3 h, float alpha) {
   float a2 = alpha * alpha;
-  float c2 = h.z * h.z;
-  float k = c2 * (a2 - 1.0f) + 1.0f;
+  float k = a2 * h.z * h.z + (h.x * h.x + h.y * h.y);
   return h.z > 0.0f ? a2 / (SSRCL_PI * k * k) : 0.0f;
 }
 
