@@ -27,14 +27,18 @@ inline float ggx_d(float3 h, float alpha) {
   return h.z > 0.0f ? a2 / (SSRCL_PI * k * k) : 0.0f;
 }
 
-// Density of the reflected direction l when h is drawn from the visible-normal distribution:
-// D_o(h) / (4 o.h) = G1(o) D(h) / (4 o.z). Zero for an undefined half vector.
+// Density of the reflected direction when its half vector h is drawn from the visible-normal
+// distribution: D_o(h) / (4 o.h) = G1(o) D(h) / (4 o.z).
+inline float ggx_vndf_pdf_from_half(float3 o, float3 h, float alpha) {
+  return o.z > 0.0f ? ggx_g1(o, alpha) * ggx_d(h, alpha) / (4.0f * o.z) : 0.0f;
+}
+
+// The same density for a given l; h = normalize(o + l) cancels for l near the mirror direction
+// at grazing views, so callers that still have the sampled h use the form above.
 inline float ggx_vndf_reflection_pdf(float3 o, float3 l, float alpha) {
   float3 h = o + l;
   float len = length(h);
-  if (!(len > 0.0f) || o.z <= 0.0f) return 0.0f;
-  h /= len;
-  return ggx_g1(o, alpha) * ggx_d(h, alpha) / (4.0f * o.z);
+  return len > 0.0f ? ggx_vndf_pdf_from_half(o, h / len, alpha) : 0.0f;
 }
 
 // Visible-normal sampling (Heitz 2018, "Sampling the GGX Distribution of Visible Normals"):
@@ -52,7 +56,8 @@ inline float3 ggx_sample_vndf(float3 o, float alpha, float2 u) {
   float s = 0.5f * (1.0f + vh.z);
   p2 = (1.0f - s) * sqrt(fmax(1.0f - p1 * p1, 0.0f)) + s * p2;
   float3 nh = p1 * t1 + p2 * t2 + sqrt(fmax(1.0f - p1 * p1 - p2 * p2, 0.0f)) * vh;
-  return normalize((float3)(alpha * nh.x, alpha * nh.y, fmax(nh.z, 0.0f)));
+  // z kept off 0: at alpha -> 0 a rounding to 0 would turn the mirror normal into a horizontal one.
+  return normalize((float3)(alpha * nh.x, alpha * nh.y, fmax(nh.z, 1e-6f)));
 }
 
 // Orthonormal basis around unit n (Duff et al. 2017, branchless).

@@ -175,7 +175,7 @@ __kernel void trace_rays(int2 size, float16 proj, float16 inv_proj, float near_p
     float3 h = ggx_sample_vndf(ol, alpha, sample_2d(i, sample, seed));
     float3 ll = 2.0f * dot(ol, h) * h - ol;
     if (ll.z <= 0.0f) return;  // below the surface: zero BRDF weight, nothing to trace
-    pdf = ggx_vndf_reflection_pdf(ol, ll, alpha);
+    pdf = ggx_vndf_pdf_from_half(ol, h, alpha);
     dir = normalize(ll.x * tx + ll.y * ty + ll.z * n);
   }
   ray_hit[record] = (float4)(dir, -1.0f);
