@@ -1,5 +1,7 @@
 // Colour pyramid for prefiltered lookups of rough reflections. Same level geometry as the HZB
 // (each level ceil(previous / 2)); a coarse texel is the mean of the fine texels under it.
+// Texels are (rgb * coverage, coverage) with coverage 1 on surfaces and 0 on sky, so lookups
+// divide by w and average surface colour only.
 __kernel void color_reduce(__global float4* pyramid, __global const HzbLevel* levels, int dst_level) {
   int x = get_global_id(0), y = get_global_id(1);
   HzbLevel dst = levels[dst_level];
@@ -31,12 +33,13 @@ inline float4 pyramid_bilinear(__global const float4* pyramid, __global const Hz
   return mix(top, bottom, f.y);
 }
 
-// Trilinear lookup at a fractional level of detail.
+// Trilinear lookup at a fractional level of detail, coverage divided out.
 inline float4 pyramid_sample(__global const float4* pyramid, __global const HzbLevel* levels, int level_count,
                              float2 pixel, float lod) {
   lod = clamp(lod, 0.0f, (float)(level_count - 1));
   int l0 = (int)lod;
   int l1 = min(l0 + 1, level_count - 1);
-  return mix(pyramid_bilinear(pyramid, levels, l0, pixel), pyramid_bilinear(pyramid, levels, l1, pixel),
-             lod - (float)l0);
+  float4 c = mix(pyramid_bilinear(pyramid, levels, l0, pixel), pyramid_bilinear(pyramid, levels, l1, pixel),
+                 lod - (float)l0);
+  return c.w > 0.0f ? c / c.w : (float4)(0.0f);
 }

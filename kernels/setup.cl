@@ -27,11 +27,14 @@ __kernel void setup(int2 size, float near_plane, float far_plane, float16 normal
   int i = y * size.x + x;
   bool traced = false;
   if (inside) {
-    __global const float* c = color_in + (size_t)i * color_channels;
-    color_out[i] = (float4)(sanitize_radiance(c[0]), sanitize_radiance(c[1]), sanitize_radiance(c[2]), 1.0f);
-
     float d = depth_in[i];
     bool surface = isfinite(d) && d >= near_plane && d <= far_plane;
+
+    // Colour carries surface coverage in w (premultiplied), so prefiltered lookups average
+    // surfaces only: rays never hit the sky, and its colour must not bleed into hits.
+    __global const float* c = color_in + (size_t)i * color_channels;
+    color_out[i] = surface ? (float4)(sanitize_radiance(c[0]), sanitize_radiance(c[1]), sanitize_radiance(c[2]), 1.0f)
+                           : (float4)(0.0f);
 
     float3 nw = vload3(i, normal_in);
     float3 nv = mat3_mul(normal_matrix, nw);

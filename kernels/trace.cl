@@ -120,13 +120,18 @@ inline float trace_linear(const TraceScene* sc, const ScreenRay* ray, float3 dir
   float t0 = cell_exit(ray, 0.0f, 0.01f / major, 1.0f, &cell);  // leave the origin pixel first
   float dt = step_pixels / major;
   int steps = (int)ceil((1.0f - t0) / dt);
+  float d_prev = ray_depth(ray, t0);
   for (int k = 0; k <= steps; ++k) {
     float t = fmin(t0 + (float)k * dt, 1.0f);
     cell = clamp(convert_int2(floor(ray_screen(ray, t))), (int2)(0, 0), sc->size - 1);
     float d = sc->hzb[cell.y * sc->size.x + cell.x];
     float d_now = ray_depth(ray, t);
-    if (d < SSRCL_NO_SURFACE && d_now >= d && d_now - d <= sc->thickness_rel * d && faces_ray(sc, cell, dir))
-      return t;
+    // A hit where the ray went behind this pixel's depth during the step (it was in front at the
+    // previous one), or is behind it by less than the thickness.
+    bool crossed = d_prev < d && d_now >= d;
+    bool within = d_now >= d && d_now - d <= sc->thickness_rel * d;
+    if (d < SSRCL_NO_SURFACE && (crossed || within) && faces_ray(sc, cell, dir)) return t;
+    d_prev = d_now;
   }
   return -1.0f;
 }
