@@ -68,7 +68,7 @@ struct Pipeline::Impl {
 
   cl::Kernel setup, hzbReduce, colorReduce, trace, accumulate, finalize, denoise;
   cl::Buffer colorIn, depthIn, normalIn, roughnessIn;
-  cl::Buffer hzb, levelBuffer, normals, colorPyramid, pixelRays, rayList, rayCount;
+  cl::Buffer hzb, levelBuffer, positions, normals, colorPyramid, pixelRays, rayList, rayCount;
   cl::Buffer accRadiance, accWeight, resolvedRgba, resolvedDistance, outRgba, outDistance;
   cl::Buffer rayHit, rayRadiance;  // one batch of ray records; sized on first use
   int batchCapacity = 0;
@@ -182,6 +182,7 @@ void Pipeline::Impl::allocate() {
   hzb = buffer(CL_MEM_READ_WRITE, hzbSize * sizeof(float));
   levelBuffer =
       cl::Buffer(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, levels.size() * sizeof(HzbLevel), levels.data());
+  positions = buffer(CL_MEM_READ_WRITE, pixels * sizeof(cl_float4));
   normals = buffer(CL_MEM_READ_WRITE, pixels * sizeof(cl_float4));
   colorPyramid = buffer(CL_MEM_READ_WRITE, hzbSize * sizeof(cl_float4));
   pixelRays = buffer(CL_MEM_READ_WRITE, pixels * sizeof(cl_int));
@@ -267,10 +268,10 @@ void Pipeline::Impl::run() {
                          &uploads.back());
   }
 
-  // HZB level 0 (planar depth) and colour pyramid level 0 start at offset 0 of their buffers.
-  setArgs(setup, size, nearPlane, farPlane, normalMatrix16, colorIn, colorChannels, depthIn, normalIn, roughnessIn,
-          useRoughnessImage ? -1.0f : s.constantRoughness, s.maxRoughness, s.mirrorRoughness, cl_int(s.samplesPerPixel),
-          hzb, normals, colorPyramid, pixelRays, rayList, rayCount);
+  // HZB level 0 and colour pyramid level 0 start at offset 0 of their buffers.
+  setArgs(setup, size, nearPlane, farPlane, normalMatrix16, invProj, colorIn, colorChannels, depthIn, normalIn,
+          roughnessIn, useRoughnessImage ? -1.0f : s.constantRoughness, s.maxRoughness, s.mirrorRoughness,
+          cl_int(s.samplesPerPixel), positions, hzb, normals, colorPyramid, pixelRays, rayList, rayCount);
   cl::Event setupEvent;
   q.enqueueNDRangeKernel(setup, cl::NullRange, global2d, local2d, nullptr, &setupEvent);
 
@@ -290,13 +291,13 @@ void Pipeline::Impl::run() {
   std::vector<cl::Event> traceEvents, resolveEvents;
   for (int first = 0; listed > 0 && first < s.samplesPerPixel; first += batch) {
     setArgs(trace, size, proj, invProj, nearPlane, farPlane, hzb, levelBuffer, static_cast<cl_int>(levels.size()),
-            normals, rayList, listed, pixelRays, cl_int(batch), cl_int(first), seed, s.mirrorRoughness, mapping,
-            coneScale, tracer, s.linearStepPixels, s.thicknessRelative, s.maxIterations, s.edgeFade, colorPyramid,
-            rayHit, rayRadiance);
+            positions, normals, rayList, listed, pixelRays, cl_int(batch), cl_int(first), seed, s.mirrorRoughness,
+            mapping, coneScale, tracer, s.linearStepPixels, s.thicknessRelative, s.maxIterations, s.edgeFade,
+            colorPyramid, rayHit, rayRadiance);
     traceEvents.emplace_back();
     q.enqueueNDRangeKernel(trace, cl::NullRange, cl::NDRange(roundUp(size_t(listed) * batch, 64)), cl::NDRange(64),
                            nullptr, &traceEvents.back());
-    setArgs(accumulate, size, invProj, hzb, normals, pixelRays, cl_int(batch), cl_int(first), s.mirrorRoughness,
+    setArgs(accumulate, size, invProj, positions, normals, pixelRays, cl_int(batch), cl_int(first), s.mirrorRoughness,
             mapping, cl_int(s.reuseRadius), rayHit, rayRadiance, accRadiance, accWeight);
     resolveEvents.emplace_back();
     q.enqueueNDRangeKernel(accumulate, cl::NullRange, global2d, local2d, nullptr, &resolveEvents.back());
@@ -308,7 +309,7 @@ void Pipeline::Impl::run() {
   q.enqueueNDRangeKernel(finalize, cl::NullRange, global2d, local2d, nullptr, &resolveEvents.back());
   cl::Event denoiseEvent;
   if (s.denoise) {
-    setArgs(denoise, size, s.mirrorRoughness, hzb, normals, pixelRays, resolvedRgba, resolvedDistance, outRgba,
+    setArgs(denoise, size, s.mirrorRoughness, positions, normals, pixelRays, resolvedRgba, resolvedDistance, outRgba,
             outDistance);
     q.enqueueNDRangeKernel(denoise, cl::NullRange, global2d, local2d, nullptr, &denoiseEvent);
   }

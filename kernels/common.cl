@@ -57,3 +57,14 @@ inline float edge_confidence(float2 s, int2 size, float edge_fade) {
   float border = fmin(fmin(s.x, (float)size.x - s.x), fmin(s.y, (float)size.y - s.y));
   return clamp(border / (edge_fade * (float)min(size.x, size.y)), 0.0f, 1.0f);
 }
+
+// Planar depth where the viewing line through screen point `pixel` meets the plane through p with
+// normal n, or a negative value where that line runs parallel to it or meets it behind the eye.
+inline float plane_depth_at(float16 inv_proj, int2 size, float2 pixel, float3 p, float3 n) {
+  float2 ndc = pixel_to_ndc(pixel, size);
+  float3 a = unproject(inv_proj, ndc, -1.0f), b = unproject(inv_proj, ndc, 0.0f);
+  float denom = dot(b - a, n);
+  if (fabs(denom) < 1e-20f) return -1.0f;
+  float lambda = dot(p - a, n) / denom;
+  return lambda >= 0.0f ? -(a.z + lambda * (b.z - a.z)) : -1.0f;
+}

@@ -1,7 +1,7 @@
 // Optional edge-aware spatial filter of the resolved glossy pass: a Gaussian whose radius grows
 // with roughness (rougher lobes vary slowly), stopped at depth and normal edges so reflections
 // do not bleed across objects. Mirror-like and untraced pixels pass through unchanged.
-__kernel void denoise(int2 size, float mirror_roughness, __global const float* depth,
+__kernel void denoise(int2 size, float mirror_roughness, __global const float4* positions,
                       __global const float4* normals, __global const int* pixel_rays,
                       __global const float4* in_rgba, __global const float* in_distance,
                       __global float4* out_rgba, __global float* out_distance) {
@@ -16,7 +16,7 @@ __kernel void denoise(int2 size, float mirror_roughness, __global const float* d
   }
   int radius = clamp((int)(nr.w * 6.0f + 0.5f), 1, 4);
   float sigma2 = 0.5f * (float)(radius * radius);
-  float d = depth[i];
+  float d = positions[i].w;
   float4 sum = (float4)(0.0f);
   float weights = 0.0f, dist_sum = 0.0f, dist_weights = 0.0f;
   for (int dy = -radius; dy <= radius; ++dy) {
@@ -27,7 +27,7 @@ __kernel void denoise(int2 size, float mirror_roughness, __global const float* d
       float4 nq = normals[q];
       if (pixel_rays[q] == 0 || nq.w <= mirror_roughness) continue;
       float w = exp(-(float)(dx * dx + dy * dy) / (2.0f * sigma2));
-      w *= exp(-fabs(depth[q] - d) / (0.01f * d));                // same surface, depth-wise
+      w *= exp(-fabs(positions[q].w - d) / (0.01f * d));                // same surface, depth-wise
       w *= pow(fmax(dot(nr.xyz, nq.xyz), 0.0f), 64.0f);           // same orientation
       w *= exp(-fabs(nq.w - nr.w) * 10.0f);                        // similar lobe width
       float4 c = in_rgba[q];

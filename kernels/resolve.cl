@@ -22,7 +22,7 @@ inline bool similar_surface(float depth_p, float3 n_p, float depth_q, float3 n_q
   return fabs(depth_q - depth_p) <= 0.05f * depth_p && dot(n_p, n_q) >= 0.9f;
 }
 
-__kernel void resolve_accumulate(int2 size, float16 inv_proj, __global const float* depth,
+__kernel void resolve_accumulate(int2 size, float16 inv_proj, __global const float4* positions,
                                  __global const float4* normals, __global const int* pixel_rays,
                                  int batch_size, int first_sample, float mirror_roughness,
                                  int roughness_mapping, int reuse_radius, __global const float4* ray_hit,
@@ -35,7 +35,7 @@ __kernel void resolve_accumulate(int2 size, float16 inv_proj, __global const flo
 
   float4 nr = normals[i];
   float3 v;
-  float3 p = pixel_view_point(inv_proj, size, (int2)(x, y), depth[i], &v);
+  float3 p = pixel_view_point(inv_proj, size, (int2)(x, y), positions[i].w, &v);
   float4 radiance = acc_radiance[i];
   float2 weight = acc_weight[i];
 
@@ -57,7 +57,8 @@ __kernel void resolve_accumulate(int2 size, float16 inv_proj, __global const flo
         if (qx < 0 || qy < 0 || qx >= size.x || qy >= size.y) continue;
         int q = qy * size.x + qx;
         int count = min(pixel_rays[q] - first_sample, batch_size);
-        if (count <= 0 || (q != i && !similar_surface(depth[i], nr.xyz, depth[q], normals[q].xyz))) continue;
+        if (count <= 0 || (q != i && !similar_surface(positions[i].w, nr.xyz, positions[q].w, normals[q].xyz)))
+          continue;
         for (int s = 0; s < count; ++s) {
           size_t r = (size_t)q * batch_size + s;
           float4 rad = ray_radiance[r];

@@ -1,7 +1,13 @@
 // Setup: turn the renderer's passes into what tracing needs, and list the pixels worth a ray.
-// Writes HZB level 0 (planar depth, SSRCL_NO_SURFACE for sky/invalid), view-space normals with
-// roughness in w, sanitized color (colour pyramid level 0), each pixel's ray count (0 for sky and
-// pixels above max_roughness, 1 for mirror-like ones), and appends traced pixels to ray_list.
+// Writes each pixel's view-space surface point with its planar depth in w (SSRCL_NO_SURFACE for
+// sky/invalid), HZB level 0, view-space normals with roughness in w, sanitized color (colour
+// pyramid level 0), each pixel's ray count (0 for sky and pixels above max_roughness, 1 for
+// mirror-like ones), and appends traced pixels to ray_list.
+//
+// A pixel's surface is the plane through its point with its normal. HZB level 0 is the nearest
+// depth of that plane over the pixel's square (its centre depth for invalid normals), so the
+// pyramid bounds the surface everywhere in the pixel, not only at its centre: a grazing floor
+// is 10% nearer at a pixel's near edge than at its centre.
 
 // Radiance rule: NaN becomes 0, negatives 0, and values clamp at 1e20 so that weighted sums
 // in later stages cannot overflow float.
@@ -13,13 +19,14 @@ inline float sanitize_radiance(float v) {
 
 // Runs in 2D work-groups; traced pixels are counted in local memory first so the global counters
 // (ray_count[0] listed pixels, ray_count[1] rays) see one atomic per group instead of one per pixel.
-__kernel void setup(int2 size, float near_plane, float far_plane, float16 normal_matrix,
+__kernel void setup(int2 size, float near_plane, float far_plane, float16 normal_matrix, float16 inv_proj,
                     __global const float* color_in, int color_channels,
                     __global const float* depth_in,
                     __global const float* normal_in,
                     __global const float* roughness_in, float constant_roughness,
                     float max_roughness, float mirror_roughness, int samples_per_pixel,
-                    __global float* depth_out, __global float4* normal_out, __global float4* color_out,
+                    __global float4* position_out, __global float* hzb_out, __global float4* normal_out,
+                    __global float4* color_out,
                     __global int* pixel_rays, __global int* ray_list, __global int* ray_count) {
   __local int group_count, group_base, group_rays;
   int x = get_global_id(0), y = get_global_id(1);
@@ -45,7 +52,20 @@ __kernel void setup(int2 size, float near_plane, float far_plane, float16 normal
     float r = constant_roughness >= 0.0f ? constant_roughness : roughness_in[i];
     r = isnan(r) ? 1.0f : clamp(r, 0.0f, 1.0f);
 
-    depth_out[i] = surface ? d : SSRCL_NO_SURFACE;
+    float3 view_dir;
+    float3 p = pixel_view_point(inv_proj, size, (int2)(x, y), d, &view_dir);
+    float nearest = d;
+    if (surface && normal_ok) {
+      for (int corner = 0; corner < 4; ++corner) {
+        float2 at = (float2)((float)(x + (corner & 1)), (float)(y + (corner >> 1)));
+        float cd = plane_depth_at(inv_proj, size, at, p, nv);
+        // Near-edge-on planes can reach any depth within the pixel; half the centre depth bounds
+        // what a real surface does there.
+        if (cd > 0.0f) nearest = fmin(nearest, fmax(cd, 0.5f * d));
+      }
+    }
+    position_out[i] = surface ? (float4)(p, d) : (float4)(0.0f, 0.0f, 0.0f, SSRCL_NO_SURFACE);
+    hzb_out[i] = surface ? nearest : SSRCL_NO_SURFACE;
     normal_out[i] = (float4)(nv, r);
     traced = surface && normal_ok && r <= max_roughness;
     pixel_rays[i] = traced ? (r <= mirror_roughness ? 1 : samples_per_pixel) : 0;

@@ -62,20 +62,44 @@ typedef struct {
   __global const float* hzb;
   __global const HzbLevel* levels;
   int level_count;
+  __global const float4* positions;
   __global const float4* normals;
   float thickness_rel;
   int max_iterations;
 } TraceScene;
 
-// A hit on a surface that faces away from the ray is a surface the ray cannot have reached.
-inline bool faces_ray(const TraceScene* sc, int2 cell, float3 dir) {
+// The ray's signed distance to a plane through p with normal n, times k = 1 / w (> 0 in front of
+// the camera): affine in t, so its sign and root are exact.
+inline float plane_side(const ScreenRay* r, float t, float3 p, float3 n) {
+  float4 q = ray_q(r, t);
+  return dot(q.xyz, n) - q.w * dot(p, n);
+}
+
+// The exact test against one pixel's surface (the plane through its point with its normal) for
+// the ray's stretch [t_in, t_out] over that pixel: a hit where the ray crosses the plane from its
+// front, or where it is already behind by less than the thickness (surfaces are assumed that
+// thick). Surfaces facing away from the ray cannot be reached. Returns the hit's t or -1;
+// *in_front tells whether the ray leaves the stretch in front of the surface.
+inline float hit_pixel(const TraceScene* sc, const ScreenRay* ray, float3 dir, int2 cell, float t_in, float t_out,
+                       bool* in_front) {
   cell = clamp(cell, (int2)(0, 0), sc->size - 1);
-  return dot(sc->normals[cell.y * sc->size.x + cell.x].xyz, dir) < 0.0f;
+  int idx = cell.y * sc->size.x + cell.x;
+  float4 pc = sc->positions[idx];
+  *in_front = true;
+  if (pc.w >= SSRCL_NO_SURFACE) return -1.0f;
+  float3 n = sc->normals[idx].xyz;
+  float g_in = plane_side(ray, t_in, pc.xyz, n), g_out = plane_side(ray, t_out, pc.xyz, n);
+  *in_front = g_out > 0.0f;
+  if (!(dot(n, dir) < 0.0f)) return -1.0f;
+  if (g_in > 0.0f && g_out <= 0.0f) return t_in + (t_out - t_in) * (g_in / (g_in - g_out));
+  if (g_in <= 0.0f && -g_in / ray_q(ray, t_in).w <= sc->thickness_rel * pc.w) return t_in;
+  return -1.0f;
 }
 
 // Hierarchical traversal (FidelityFX SSSR style): climb while the ray stays in front of a cell's
-// nearest depth, descend where it may hit. Returns the hit's t, or a negative value on a miss.
-inline float trace_hiz(const TraceScene* sc, const ScreenRay* ray, float3 dir) {
+// nearest depth, descend where it may hit, and decide at full resolution with hit_pixel.
+// Returns the hit's t, or a negative value on a miss.
+inline float trace_hiz(const TraceScene* sc, const ScreenRay* ray, float3 dir, int2* hit_cell) {
   float major = fmax(fabs(ray->ds.x), fabs(ray->ds.y));
   float nudge = 0.01f / major;  // a hundredth of a pixel along the major axis
   bool deeper = ray->q0.z * ray->dq.w - ray->dq.z * ray->q0.w > 0.0f;  // depth grows with t
@@ -84,54 +108,54 @@ inline float trace_hiz(const TraceScene* sc, const ScreenRay* ray, float3 dir) {
   int mip = 0;
   for (int iter = 0; iter < sc->max_iterations && t <= 1.0f; ++iter) {
     float t_exit = cell_exit(ray, t, nudge, (float)(1 << mip), &cell);
+    if (mip == 0) {
+      bool in_front;
+      float t_hit = hit_pixel(sc, ray, dir, cell, t, fmin(t_exit, 1.0f), &in_front);
+      if (t_hit >= 0.0f) {
+        *hit_cell = cell;
+        return t_hit;
+      }
+      t = t_exit;
+      if (in_front) mip = min(1, sc->level_count - 1);  // else it passed behind: stay fine
+      continue;
+    }
     float d_min = hzb_fetch(sc->hzb, sc->levels, mip, cell);
-    float d_now = ray_depth(ray, t);
-    if (d_now < d_min) {
+    if (ray_depth(ray, t) < d_min) {
       // In front of everything in this cell: does the ray reach the cell's nearest depth inside it?
       float t_cross = (deeper && d_min < SSRCL_NO_SURFACE) ? ray_t_at_depth(ray, d_min) : INFINITY;
       if (t_cross <= t_exit) {
-        if (mip > 0) {
-          t = fmax(t, t_cross);
-          --mip;
-          continue;
-        }
-        if (t_cross <= 1.0f && faces_ray(sc, cell, dir)) return fmax(t, t_cross);
-        t = t_exit;
+        t = fmax(t, t_cross);
+        --mip;
       } else {
         t = t_exit;
         mip = min(mip + 1, sc->level_count - 1);
       }
-    } else if (mip > 0) {
-      --mip;  // possibly behind something in this cell: look closer
-    } else if (d_min < SSRCL_NO_SURFACE && d_now - d_min <= sc->thickness_rel * d_min && faces_ray(sc, cell, dir)) {
-      return t;
     } else {
-      t = t_exit;  // behind the surface by more than its thickness: the ray passes behind it
+      --mip;  // possibly behind something in this cell: look closer
     }
   }
   return -1.0f;
 }
 
-// Fixed steps of `step_pixels` along the major screen axis, testing the full-resolution depth at
-// every step: no hierarchy to skip thin features, the reference tracer.
-inline float trace_linear(const TraceScene* sc, const ScreenRay* ray, float3 dir, float step_pixels) {
+// Fixed steps of `step_pixels` along the major screen axis, each tested with hit_pixel against
+// the pixel it lands in: no hierarchy that could skip a thin feature, the reference tracer.
+inline float trace_linear(const TraceScene* sc, const ScreenRay* ray, float3 dir, float step_pixels,
+                          int2* hit_cell) {
   float major = fmax(fabs(ray->ds.x), fabs(ray->ds.y));
   int2 cell;
-  float t0 = cell_exit(ray, 0.0f, 0.01f / major, 1.0f, &cell);  // leave the origin pixel first
+  float t_prev = cell_exit(ray, 0.0f, 0.01f / major, 1.0f, &cell);  // leave the origin pixel first
   float dt = step_pixels / major;
-  int steps = (int)ceil((1.0f - t0) / dt);
-  float d_prev = ray_depth(ray, t0);
-  for (int k = 0; k <= steps; ++k) {
-    float t = fmin(t0 + (float)k * dt, 1.0f);
-    cell = clamp(convert_int2(floor(ray_screen(ray, t))), (int2)(0, 0), sc->size - 1);
-    float d = sc->hzb[cell.y * sc->size.x + cell.x];
-    float d_now = ray_depth(ray, t);
-    // A hit where the ray went behind this pixel's depth during the step (it was in front at the
-    // previous one), or is behind it by less than the thickness.
-    bool crossed = d_prev < d && d_now >= d;
-    bool within = d_now >= d && d_now - d <= sc->thickness_rel * d;
-    if (d < SSRCL_NO_SURFACE && (crossed || within) && faces_ray(sc, cell, dir)) return t;
-    d_prev = d_now;
+  int steps = (int)ceil((1.0f - t_prev) / dt);
+  for (int k = 1; k <= steps; ++k) {
+    float t = fmin(t_prev + dt, 1.0f);
+    cell = convert_int2(floor(ray_screen(ray, t)));
+    bool in_front;
+    float t_hit = hit_pixel(sc, ray, dir, cell, t_prev, t, &in_front);
+    if (t_hit >= 0.0f) {
+      *hit_cell = cell;
+      return t_hit;
+    }
+    t_prev = t;
   }
   return -1.0f;
 }
@@ -142,7 +166,8 @@ inline float trace_linear(const TraceScene* sc, const ScreenRay* ray, float3 dir
 //                (mirror) or was not traced, which neighbours must not reuse.
 __kernel void trace_rays(int2 size, float16 proj, float16 inv_proj, float near_plane, float far_plane,
                          __global const float* hzb, __global const HzbLevel* levels, int level_count,
-                         __global const float4* normals, __global const int* ray_list, int listed,
+                         __global const float4* positions, __global const float4* normals,
+                         __global const int* ray_list, int listed,
                          __global const int* pixel_rays, int batch_size, int first_sample, uint seed,
                          float mirror_roughness, int roughness_mapping, float cone_scale, int tracer, float linear_step,
                          float thickness_rel, int max_iterations, float edge_fade,
@@ -158,11 +183,10 @@ __kernel void trace_rays(int2 size, float16 proj, float16 inv_proj, float near_p
   ray_hit[record] = (float4)(0.0f, 0.0f, 0.0f, -1.0f);
   ray_radiance[record] = (float4)(0.0f);
 
-  int2 pix = (int2)(i % size.x, i / size.x);
   float4 nr = normals[i];
   float3 n = nr.xyz;
   float3 v;
-  float3 p = pixel_view_point(inv_proj, size, pix, hzb[i], &v);
+  float3 p = pixel_view_point(inv_proj, size, (int2)(i % size.x, i / size.x), positions[i].w, &v);
   float3 o = -v;
   if (dot(o, n) <= 0.0f) return;  // normal faces away from the viewer: no defined reflection
 
@@ -198,8 +222,9 @@ __kernel void trace_rays(int2 size, float16 proj, float16 inv_proj, float near_p
   if (!make_screen_ray(proj, size, p, p + dir * len, &ray)) return;
   if (!(fmax(fabs(ray.ds.x), fabs(ray.ds.y)) > 0.0f)) return;
 
-  TraceScene sc = {size, hzb, levels, level_count, normals, thickness_rel, max_iterations};
-  float t = tracer == 1 ? trace_linear(&sc, &ray, dir, linear_step) : trace_hiz(&sc, &ray, dir);
+  TraceScene sc = {size, hzb, levels, level_count, positions, normals, thickness_rel, max_iterations};
+  int2 cell;  // the pixel whose surface the ray hit; its colour is the hit's colour
+  float t = tracer == 1 ? trace_linear(&sc, &ray, dir, linear_step, &cell) : trace_hiz(&sc, &ray, dir, &cell);
   if (t < 0.0f) return;
 
   float2 s = ray_screen(&ray, t);
@@ -212,8 +237,8 @@ __kernel void trace_rays(int2 size, float16 proj, float16 inv_proj, float near_p
     float footprint = 2.0f * length(hit - p) * alpha * cone_scale * px_per_unit;
     radiance = pyramid_sample(color_pyramid, levels, level_count, s, log2(fmax(footprint, 1.0f)));
   } else {
-    int2 c = clamp(convert_int2(floor(s)), (int2)(0, 0), size - 1);
-    radiance = color_pyramid[c.y * size.x + c.x];
+    cell = clamp(cell, (int2)(0, 0), size - 1);
+    radiance = color_pyramid[cell.y * size.x + cell.x];
   }
   ray_hit[record] = (float4)(hit, edge_confidence(s, size, edge_fade));
   ray_radiance[record] = (float4)(radiance.xyz, pdf);

@@ -30,9 +30,11 @@ enum class RoughnessMapping {
 // radiance averaged over the specular lobe, premultiplied by the found fraction A, and
 // `rgb + environment * (1 - A)` completes it. Mirror pixels are the limit alpha -> 0.
 struct TraceSettings {
-  // Hits count when the ray is at most this far behind the depth buffer, relative to the
-  // surface's depth (scale-aware: 0.02 = 2% of the depth at the hit).
-  float thicknessRelative = 0.02f;
+  // Each pixel's surface is the plane through its point with its normal; rays crossing it hit.
+  // A ray already behind a surface where it reaches it (at a silhouette) still hits when it is
+  // less than this far behind, along the normal, relative to the surface's depth (scale-aware:
+  // 0.002 = 0.2% of the depth). Thicker: fewer holes, more streaks; thinner: the reverse.
+  float thicknessRelative = 0.002f;
   int maxIterations = 512;          // Hi-Z traversal steps per ray before it gives up
   float maxRoughness = 1.0f;        // pixels rougher than this get no ray and A = 0
   float edgeFade = 0.05f;           // fraction of the screen's smaller side over which A fades out
@@ -93,7 +95,8 @@ class Pipeline {
 
   const Image& output(const std::string& name) const;
   const StageTimes& stageTimes() const;
-  // The HZB mip chain of the last execute (level 0 = linear depth), for tests and tools.
+  // The HZB mip chain of the last execute, for tests and tools: level 0 is the nearest depth of
+  // each pixel's surface over its square, each coarser level the min of the texels under it.
   std::vector<Image> readHzb() const;
 
  private:
