@@ -63,12 +63,15 @@ std::vector<Setting> settingsToCompare() {
   draft.reuseRadius = 0;
   list.push_back({"1 ray, no reuse", draft});
   list.push_back({"medium", medium});
+  auto prefiltered = medium;
+  prefiltered.prefilter = true;
+  list.push_back({"medium + prefilter", prefiltered});
   auto denoised = medium;
   denoised.denoise = true;
   list.push_back({"medium + denoise", denoised});
   auto many = medium;
-  many.samplesPerPixel = 32;
-  list.push_back({"hiz 32 rays + reuse", many});
+  many.samplesPerPixel = 16;
+  list.push_back({"16 rays", many});
   auto reference = ssrcl::qualityPreset("reference");
   list.push_back({"reference (256)", reference});
   return list;

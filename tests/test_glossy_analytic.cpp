@@ -476,7 +476,7 @@ dvec3 colourOfHits(const GlossyCase& c, const ssrcl::Image& out) {
   return sum / double(std::max<std::size_t>(n, 1));
 }
 
-// The fast path (medium: Hi-Z, 4 rays, 3x3 ray reuse, prefiltered colour).
+// The fast path (medium: Hi-Z, 4 rays, 5x5 ray reuse), and its prefiltered variant's colour.
 TEST_P(GlossySsr, FastPathBiasAndError) {
   const GlossyCase& c = glossyCase(GetParam());
   const ssrcl::Image medium = runSsr(c, ssrcl::TraceSettings{});
@@ -489,21 +489,24 @@ TEST_P(GlossySsr, FastPathBiasAndError) {
   const ssrcl::Image one = runSsr(c, own);
   checkInvariants(c, one);
   const Errors e = compare(c, medium), e4 = compare(c, noReuse), e1 = compare(c, one);
-  const dvec3 tint = colourOfHits(c, medium), tintRef = colourOfHits(c, runSsr(c, reference(64)));
+  ssrcl::TraceSettings prefiltered;
+  prefiltered.prefilter = true;
+  const dvec3 tint = colourOfHits(c, runSsr(c, prefiltered)), tintRef = colourOfHits(c, runSsr(c, reference(64)));
   std::cout << "r " << c.roughness << " medium: " << describe(e) << "\n   4 spp, no reuse: " << describe(e4)
-            << "\n   1 spp, no reuse: " << describe(e1) << "\n   rgb / A - L: medium " << tint.r << " " << tint.g << " "
+            << "\n   1 spp, no reuse: " << describe(e1) << "\n   rgb / A - L: prefiltered " << tint.r << " " << tint.g << " "
             << tint.b << ", reference 64 spp " << tintRef.r << " " << tintRef.g << " " << tintRef.b << "\n";
   record("medium", e);
   record("no_reuse_4spp", e4);
   record("no_reuse_1spp", e1);
   for (int ch = 0; ch < 3; ++ch) RecordProperty("medium_tint_" + std::to_string(ch), std::to_string(tint[ch]));
-  // Measured: |bias A| <= 0.0021, per channel |bias rgb| <= 0.0064, rms A 0.044-0.052, rms rgb
-  // 0.028-0.033. Bounds: the A bias may reach half the outline's one-pixel envelope (~0.008, see
-  // the reference test), the channel biases 2x what is measured, the rms 1.4x.
+  // Measured (5x5 reuse): |bias A| <= 0.0026, per channel |bias rgb| <= 0.0024, rms A 0.031-0.038,
+  // rms rgb 0.020-0.024. Bounds: the A bias may reach half the outline's one-pixel envelope
+  // (~0.008, see the reference test), the channel biases 2x the largest measured before the
+  // tangent-plane hit test (0.0064), the rms 1.4x.
   EXPECT_LT(std::abs(e.biasA), 0.008);
   for (int ch = 0; ch < 3; ++ch) EXPECT_LT(std::abs(e.biasChannel[ch]), 0.013) << ch;
-  EXPECT_LT(e.rmsA, 0.07);
-  EXPECT_LT(e.rmsRgb, 0.045);
+  EXPECT_LT(e.rmsA, 0.055);
+  EXPECT_LT(e.rmsRgb, 0.034);
   // Reuse pays: the same 4 rays without neighbours are ~2.7x noisier, 1 ray ~7x.
   EXPECT_LT(e.rmsA, 0.6 * e4.rmsA);
   EXPECT_LT(e.rmsRgb, 0.6 * e4.rmsRgb);

@@ -27,7 +27,7 @@ TraceSettings SettingsOptions::resolve() const {
 void addSettingsOptions(CLI::App& cmd, SettingsOptions& o) {
   const char* q = "Quality";
   cmd.add_option("--quality", o.quality,
-                 "Preset: medium (Hi-Z, 4 rays, 3x3 reuse) or reference (linear march, 256 rays)")
+                 "Preset: medium (Hi-Z, 4 rays, 5x5 reuse) or reference (linear march, 256 rays)")
       ->group(q)
       ->capture_default_str()
       ->check(CLI::IsMember({"medium", "reference"}));

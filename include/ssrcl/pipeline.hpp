@@ -44,15 +44,15 @@ struct TraceSettings {
   uint32_t seed = 0;           // same inputs and seed, same output (on one device)
   RoughnessMapping roughnessMapping = RoughnessMapping::Squared;
   float mirrorRoughness = 0.02f;  // at or below: one deterministic mirror ray, no reuse
-  int reuseRadius = 1;         // resolve reuses rays of (2r+1)^2 neighbours (Stachowiak); 0 = own only
-  bool prefilter = true;       // rough hits read a color mip matched to the ray's cone footprint
+  int reuseRadius = 2;         // resolve reuses rays of (2r+1)^2 neighbours (Stachowiak); 0 = own only
+  bool prefilter = false;      // rough hits read a color mip matched to the ray's cone footprint
   Tracer tracer = Tracer::HiZ;
   float linearStepPixels = 0.5f;  // Tracer::Linear step along the ray's major screen axis
   bool denoise = false;           // edge-aware spatial filter after the resolve
 };
 
 // Named bundles of the settings above:
-//   "medium"    (the default TraceSettings) Hi-Z, 4 rays, 3x3 ray reuse, prefiltered colour.
+//   "medium"    (the default TraceSettings) Hi-Z, 4 rays, 5x5 ray reuse.
 //   "reference" Linear march at half-pixel steps, 256 rays per pixel, no reuse, no prefilter, no
 //               filter: the best answer screen-space information allows, the yardstick.
 // Throws Error(InvalidArgument) for an unknown name.
