@@ -1,13 +1,19 @@
 """Check that a Blender sample's G-buffer agrees with its camera sidecar.
 
     python3 check_sample.py mirror/mirror.exr mirror/mirror.camera.json [--preview out.png]
+    python3 check_sample.py glossy/glossy.exr glossy/glossy.camera.json \
+        --floor-roughness 0.125,0.25,0.4375 --stripe-columns 160,320
     blender -b --factory-startup --python check_sample.py -- mirror/mirror.exr ...
 
-Unprojects every mirror-floor pixel from its depth with the JSON camera and reports how far the
+Floor pixels are those whose whole filter footprint has finite depth and a roughness AOV within
+the range of --floor-roughness (default 0, the mirror; the samples' objects use other values).
+Unprojects every floor pixel from its depth with the JSON camera and reports how far the
 recovered point is from the z = 0 plane; also checks floor normals, the background depth, the
-roughness AOV and that Combined == (GlossDir + GlossInd) * GlossCol on the floor. Conventions
-tested: pixel (x, y) centre is (x + 0.5, y + 0.5), y = 0 is the top row of the EXR,
-NDC x = 2 (x + 0.5) / W - 1, NDC y = 1 - 2 (y + 0.5) / H, Depth.Z = planar depth = -z_camera.
+roughness AOV (exactly the floor value; with --stripe-columns, the value of the stripe whose
+image columns hold the pixel, and in between next to a stripe edge) and that
+Combined == (GlossDir + GlossInd) * GlossCol on the floor. Conventions tested: pixel (x, y)
+centre is (x + 0.5, y + 0.5), y = 0 is the top row of the EXR, NDC x = 2 (x + 0.5) / W - 1,
+NDC y = 1 - 2 (y + 0.5) / H, Depth.Z = planar depth = -z_camera.
 Exits 1 if a check fails.
 """
 import collections
@@ -94,16 +100,30 @@ def percentile(values, q):
     return s[min(len(s) - 1, int(q * (len(s) - 1) + 0.5))] if s else float("nan")
 
 
+def take_option(argv, name, default):
+    """Remove `name value` from argv; return (value or default, argv)."""
+    if name not in argv:
+        return default, argv
+    i = argv.index(name)
+    if i + 1 >= len(argv):
+        raise SystemExit("%s needs a value" % name)
+    return argv[i + 1], argv[:i] + argv[i + 2:]
+
+
 def main(argv):
-    preview = None
-    if "--preview" in argv:
-        i = argv.index("--preview")
-        preview = argv[i + 1]
-        argv = argv[:i] + argv[i + 2:]
+    preview, argv = take_option(argv, "--preview", None)
+    floor_values, argv = take_option(argv, "--floor-roughness", "0")
+    stripe_columns, argv = take_option(argv, "--stripe-columns", "")
     if len(argv) != 2:
         print(__doc__, file=sys.stderr)
         return 2
     exr_path, json_path = argv
+    floor_values = [float(v) for v in floor_values.split(",")]
+    stripe_columns = [int(c) for c in stripe_columns.split(",")] if stripe_columns else []
+    if len(stripe_columns) != len(floor_values) - 1:
+        print("need one --stripe-columns edge between each two --floor-roughness values",
+              file=sys.stderr)
+        return 2
 
     exr = minexr.ExrFile(exr_path)
     with open(json_path) as f:
@@ -144,9 +164,14 @@ def main(argv):
     if sky_depths and sky_depths != [BACKGROUND_DEPTH]:
         print("  note: background depth is not exactly %g" % BACKGROUND_DEPTH)
 
-    # Floor = roughness exactly 0 (only the mirror has it) with finite depth, over the pixel's
-    # whole filter footprint, which drops pixels mixing floor with objects or with the sky.
-    floor = interior(W, H, lambda i: rough[i] == 0.0 and depth[i] < 1e9)
+    # Floor = roughness AOV within the floor's values (the objects use others) and finite depth,
+    # over the pixel's whole filter footprint, which drops pixels mixing floor with objects or
+    # with the sky. (Normal = +Z alone would also take the tops of cubes.)
+    lo, hi = min(floor_values) - 1e-6, max(floor_values) + 1e-6
+    floor = interior(W, H, lambda i: lo <= rough[i] <= hi and depth[i] < 1e9)
+    if not floor:
+        print("FAIL no floor pixels with roughness AOV in %s" % floor_values)
+        return 1
     print("floor: %d px = %.1f%% of the image, depth %.3f .. %.3f m"
           % (len(floor), 100.0 * len(floor) / (W * H),
              min(depth[i] for i in floor), max(depth[i] for i in floor)))
@@ -180,13 +205,45 @@ def main(argv):
         ok = False
         print("FAIL floor does not unproject to z = 0")
 
+    # Roughness AOV on the floor: column band k (x + 0.5 between edges k-1 and k) holds value k.
+    # The AOV is filtered, so a pixel within MARGIN columns of an edge may hold a blend.
+    def band(x):
+        return sum(1 for edge in stripe_columns if x + 0.5 > edge)
+    print("\nfloor roughness AOV per stripe (image columns: value):")
+    for k, value in enumerate(floor_values):
+        first = stripe_columns[k - 1] if k else 0
+        last = stripe_columns[k] - 1 if k < len(stripe_columns) else W - 1
+        inner = [i for i in floor if all(band(i % W + d) == k
+                                         for d in range(-MARGIN, MARGIN + 1))]
+        exact = sum(1 for i in inner if rough[i] == value)
+        dev = max((abs(rough[i] - value) for i in inner), default=0.0)
+        rows = sorted(set(i // W for i in inner))
+        print("  columns %3d-%3d: %-7g %6d px (rows %s-%s) exact %d, max |AOV - value| %.3g"
+              % (first, last, value, len(inner), rows[0] if rows else "-",
+                 rows[-1] if rows else "-", exact, dev))
+        if exact != len(inner):
+            ok = False
+            print("FAIL roughness AOV does not match the stripe value")
+    edge_px = [i for i in floor if len(set(band(i % W + d)
+                                           for d in range(-MARGIN, MARGIN + 1))) > 1]
+    outside = 0
+    for i in edge_px:
+        near = [floor_values[band(i % W + d)] for d in range(-MARGIN, MARGIN + 1)]
+        outside += not (min(near) - 1e-6 <= rough[i] <= max(near) + 1e-6)
+    if edge_px:
+        print("  %d px within %d columns of a stripe edge, %d outside the neighbouring values"
+              % (len(edge_px), MARGIN, outside))
+        if outside:
+            ok = False
+            print("FAIL roughness AOV next to a stripe edge is not a blend of the two stripes")
+
     dev = max(math.sqrt(nx[i] ** 2 + ny[i] ** 2 + (nz[i] - 1.0) ** 2) for i in floor)
     print("floor normals: max |n - (0,0,1)| = %.3g" % dev)
     if dev > NORMAL_TOL:
         ok = False
         print("FAIL floor normals are not world +Z")
 
-    # A metallic, roughness-0 floor has no diffuse lobe, so all its light is glossy and
+    # A metallic floor has no diffuse lobe, so all its light is glossy and
     # Cycles' light-pass convention gives Combined = (GlossDir + GlossInd) * GlossCol.
     worst, total = 0.0, 0.0
     for i in floor:
