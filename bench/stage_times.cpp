@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "ssrcl/ssrcl.hpp"
-#include "support/analytic_scene.hpp"
+#include "scenes/analytic_scene.hpp"
 
 int main(int argc, char** argv) {
   const std::string sceneName = argc > 1 ? argv[1] : "spheres_on_mirror";

@@ -12,7 +12,7 @@
 
 #include "ssrcl/device.hpp"
 #include "ssrcl/pipeline.hpp"
-#include "support/analytic_scene.hpp"
+#include "scenes/analytic_scene.hpp"
 #include "support/test_device.hpp"
 
 namespace {

@@ -16,7 +16,7 @@
 #include <glm/vec3.hpp>
 #include <vector>
 
-#include "support/analytic_scene.hpp"
+#include "scenes/analytic_scene.hpp"
 #include "support/ggx_reference.hpp"
 
 namespace ssrcl::test {

@@ -1,4 +1,4 @@
-#include "support/analytic_scene.hpp"
+#include "scenes/analytic_scene.hpp"
 
 #include <algorithm>
 #include <cmath>
