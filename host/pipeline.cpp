@@ -13,6 +13,10 @@ namespace {
 
 constexpr std::array<const char*, 4> kInputNames = {"color", "depth", "normal", "roughness"};
 
+// Mirror SSRCL_FETCH_SLOTS and the histogram in kernels/trace.cl.
+constexpr size_t kFetchSlots = 1024;
+constexpr size_t kHistogramBins = 33;
+
 // Mirrors HzbLevel in kernels/common.cl.
 struct HzbLevel {
   cl_int offset, width, height, pad;
@@ -72,6 +76,8 @@ struct Pipeline::Impl {
   cl::Buffer accRadiance, accWeight, resolvedRgba, resolvedDistance, outRgba, outDistance;
   cl::Buffer rayHit, rayRadiance;  // one batch of ray records; sized on first use
   int batchCapacity = 0;
+  cl::Buffer workCounters;  // counting mode: kFetchSlots texel-read sums, then kHistogramBins
+  size_t fixedBytes = 0;    // everything but the ray records
 
   Image reflection, distance;
   StageTimes times;
@@ -124,6 +130,11 @@ void Pipeline::Impl::validateSettings() const {
     throw Error(ErrorCode::InvalidArgument, "parameter reuse-radius must be in [0, 8]");
   if (!(s.linearStepPixels >= 0.05f && s.linearStepPixels <= 8.0f))
     throw Error(ErrorCode::InvalidArgument, "parameter linear-step must be in [0.05, 8] pixels");
+  if (s.traceStride != 1 && s.traceStride != 2)
+    throw Error(ErrorCode::InvalidArgument, "parameter trace-stride must be 1 or 2");
+  if (s.traceStride == 2 && s.reuseRadius < 1)
+    throw Error(ErrorCode::InvalidArgument,
+                "parameter trace-stride 2 needs reuse-radius >= 1 (untraced pixels borrow rays)");
 }
 
 void Pipeline::Impl::validate() {
@@ -174,7 +185,12 @@ void Pipeline::Impl::allocate() {
   finalize = cl::Kernel(program, "resolve_finalize");
   denoise = cl::Kernel(program, "denoise");
 
-  auto buffer = [&](cl_mem_flags flags, size_t bytes) { return cl::Buffer(ctx, flags, std::max<size_t>(bytes, 4)); };
+  fixedBytes = 0;
+  auto buffer = [&](cl_mem_flags flags, size_t bytes) {
+    bytes = std::max<size_t>(bytes, 4);
+    fixedBytes += bytes;
+    return cl::Buffer(ctx, flags, bytes);
+  };
   colorIn = buffer(CL_MEM_READ_ONLY, pixels * colorChannels * sizeof(float));
   depthIn = buffer(CL_MEM_READ_ONLY, pixels * sizeof(float));
   normalIn = buffer(CL_MEM_READ_ONLY, pixels * 3 * sizeof(float));
@@ -182,6 +198,7 @@ void Pipeline::Impl::allocate() {
   hzb = buffer(CL_MEM_READ_WRITE, hzbSize * sizeof(float));
   levelBuffer =
       cl::Buffer(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, levels.size() * sizeof(HzbLevel), levels.data());
+  workCounters = buffer(CL_MEM_READ_WRITE, (kFetchSlots + kHistogramBins) * sizeof(cl_int));
   positions = buffer(CL_MEM_READ_WRITE, pixels * sizeof(cl_float4));
   normals = buffer(CL_MEM_READ_WRITE, pixels * sizeof(cl_float4));
   colorPyramid = buffer(CL_MEM_READ_WRITE, hzbSize * sizeof(cl_float4));
@@ -243,7 +260,7 @@ void Pipeline::Impl::run() {
   const float nearPlane = static_cast<float>(camera.nearPlane);
   const float farPlane = static_cast<float>(std::min(camera.farPlane, double(std::numeric_limits<float>::max())));
   const cl_int mapping = s.roughnessMapping == RoughnessMapping::Linear ? 1 : 0;
-  const cl_int tracer = s.tracer == Tracer::Linear ? 1 : 0;
+  const cl_int tracer = s.tracer == Tracer::Linear ? 1 : s.tracer == Tracer::DDA ? 2 : 0;
   const cl_uint seed = s.seed;
   const int batch = batchSize();
   // Each ray's cone covers its share of the lobe among all rays the resolve combines.
@@ -262,6 +279,11 @@ void Pipeline::Impl::run() {
   q.enqueueFillBuffer(accRadiance, cl_float4{{0, 0, 0, 0}}, 0, pixels * sizeof(cl_float4), nullptr, &uploads[4]);
   uploads.emplace_back();
   q.enqueueFillBuffer(accWeight, cl_float2{{0, 0}}, 0, pixels * sizeof(cl_float2), nullptr, &uploads.back());
+  if (s.countWork) {
+    uploads.emplace_back();
+    q.enqueueFillBuffer(workCounters, cl_int(0), 0, (kFetchSlots + kHistogramBins) * sizeof(cl_int), nullptr,
+                        &uploads.back());
+  }
   if (useRoughnessImage) {
     uploads.emplace_back();
     q.enqueueWriteBuffer(roughnessIn, CL_FALSE, 0, pixels * sizeof(float), inputs.at("roughness")->data.data(), nullptr,
@@ -271,7 +293,8 @@ void Pipeline::Impl::run() {
   // HZB level 0 and colour pyramid level 0 start at offset 0 of their buffers.
   setArgs(setup, size, nearPlane, farPlane, normalMatrix16, invProj, colorIn, colorChannels, depthIn, normalIn,
           roughnessIn, useRoughnessImage ? -1.0f : s.constantRoughness, s.maxRoughness, s.mirrorRoughness,
-          cl_int(s.samplesPerPixel), positions, hzb, normals, colorPyramid, pixelRays, rayList, rayCount);
+          cl_int(s.samplesPerPixel), cl_int(s.traceStride), positions, hzb, normals, colorPyramid, pixelRays, rayList,
+          rayCount);
   cl::Event setupEvent;
   q.enqueueNDRangeKernel(setup, cl::NullRange, global2d, local2d, nullptr, &setupEvent);
 
@@ -293,7 +316,7 @@ void Pipeline::Impl::run() {
     setArgs(trace, size, proj, invProj, nearPlane, farPlane, hzb, levelBuffer, static_cast<cl_int>(levels.size()),
             positions, normals, rayList, listed, pixelRays, cl_int(batch), cl_int(first), seed, s.mirrorRoughness,
             mapping, coneScale, tracer, s.linearStepPixels, s.thicknessRelative, s.maxIterations, s.edgeFade,
-            colorPyramid, rayHit, rayRadiance);
+            cl_int(s.countWork), workCounters, colorPyramid, rayHit, rayRadiance);
     traceEvents.emplace_back();
     q.enqueueNDRangeKernel(trace, cl::NullRange, cl::NDRange(roundUp(size_t(listed) * batch, 64)), cl::NDRange(64),
                            nullptr, &traceEvents.back());
@@ -325,6 +348,16 @@ void Pipeline::Impl::run() {
     return ms;
   };
   times.tracedRays = counts[1];
+  times.depthFetches = 0;
+  times.iterationHistogram.clear();
+  if (s.countWork) {
+    std::vector<cl_int> counters(kFetchSlots + kHistogramBins);
+    q.enqueueReadBuffer(workCounters, CL_TRUE, 0, counters.size() * sizeof(cl_int), counters.data());
+    for (size_t k = 0; k < kFetchSlots; ++k) times.depthFetches += static_cast<unsigned>(counters[k]);
+    times.iterationHistogram.assign(counters.begin() + kFetchSlots, counters.end());
+    while (!times.iterationHistogram.empty() && times.iterationHistogram.back() == 0)
+      times.iterationHistogram.pop_back();
+  }
   times.tracedPixels = listed;
   times.ms.clear();
   times.ms["upload"] = sum(uploads);
@@ -353,6 +386,10 @@ const Image& Pipeline::output(const std::string& name) const {
 }
 
 const StageTimes& Pipeline::stageTimes() const { return impl_->times; }
+
+size_t Pipeline::deviceBytes() const {
+  return impl_->fixedBytes + size_t(impl_->batchCapacity) * impl_->width * impl_->height * 2 * sizeof(cl_float4);
+}
 
 std::vector<Image> Pipeline::readHzb() const {
   if (!impl_->committed) throw Error(ErrorCode::InvalidArgument, "pipeline: readHzb() before commit()");

@@ -31,7 +31,7 @@ __kernel void resolve_accumulate(int2 size, float16 inv_proj, __global const flo
   int x = get_global_id(0), y = get_global_id(1);
   if (x >= size.x || y >= size.y) return;
   int i = y * size.x + x;
-  if (pixel_rays[i] <= first_sample) return;  // no ray in this batch: sky, too rough, or a mirror done
+  if (pixel_rays[i] == 0) return;  // sky, or too rough
 
   float4 nr = normals[i];
   float3 v;
@@ -40,7 +40,7 @@ __kernel void resolve_accumulate(int2 size, float16 inv_proj, __global const flo
   float2 weight = acc_weight[i];
 
   if (nr.w <= mirror_roughness) {
-    if (first_sample == 0) {
+    if (first_sample == 0) {  // its one ray is in the first batch
       float4 h = ray_hit[(size_t)i * batch_size];
       bool hit = h.w >= 0.0f;
       radiance = hit ? (float4)(ray_radiance[(size_t)i * batch_size].xyz * h.w, h.w) : (float4)(0.0f);

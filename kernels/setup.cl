@@ -24,7 +24,7 @@ __kernel void setup(int2 size, float near_plane, float far_plane, float16 normal
                     __global const float* depth_in,
                     __global const float* normal_in,
                     __global const float* roughness_in, float constant_roughness,
-                    float max_roughness, float mirror_roughness, int samples_per_pixel,
+                    float max_roughness, float mirror_roughness, int samples_per_pixel, int trace_stride,
                     __global float4* position_out, __global float* hzb_out, __global float4* normal_out,
                     __global float4* color_out,
                     __global int* pixel_rays, __global int* ray_list, __global int* ray_count) {
@@ -67,8 +67,12 @@ __kernel void setup(int2 size, float near_plane, float far_plane, float16 normal
     position_out[i] = surface ? (float4)(p, d) : (float4)(0.0f, 0.0f, 0.0f, SSRCL_NO_SURFACE);
     hzb_out[i] = surface ? nearest : SSRCL_NO_SURFACE;
     normal_out[i] = (float4)(nv, r);
-    traced = surface && normal_ok && r <= max_roughness;
-    pixel_rays[i] = traced ? (r <= mirror_roughness ? 1 : samples_per_pixel) : 0;
+    // Ray counts: 0 no reflection (sky, too rough), 1 mirror-like, -1 glossy but resolved from
+    // its neighbours' rays only (strided tracing), else samples_per_pixel.
+    bool reflects = surface && normal_ok && r <= max_roughness;
+    bool strided_out = (x % trace_stride) != 0 || (y % trace_stride) != 0;
+    pixel_rays[i] = !reflects ? 0 : r <= mirror_roughness ? 1 : strided_out ? -1 : samples_per_pixel;
+    traced = pixel_rays[i] > 0;
   }
 
   bool leader = get_local_id(0) == 0 && get_local_id(1) == 0;

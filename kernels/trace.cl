@@ -66,6 +66,8 @@ typedef struct {
   __global const float4* normals;
   float thickness_rel;
   int max_iterations;
+  int iterations;  // work done by this ray, for the counting mode
+  int fetches;     // depth-buffer texels read (HZB texels, or a pixel's point and normal)
 } TraceScene;
 
 // The ray's signed distance to a plane through p with normal n, times k = 1 / w (> 0 in front of
@@ -80,9 +82,10 @@ inline float plane_side(const ScreenRay* r, float t, float3 p, float3 n) {
 // front, or where it is already behind by less than the thickness (surfaces are assumed that
 // thick). Surfaces facing away from the ray cannot be reached. Returns the hit's t or -1;
 // *in_front tells whether the ray leaves the stretch in front of the surface.
-inline float hit_pixel(const TraceScene* sc, const ScreenRay* ray, float3 dir, int2 cell, float t_in, float t_out,
+inline float hit_pixel(TraceScene* sc, const ScreenRay* ray, float3 dir, int2 cell, float t_in, float t_out,
                        bool* in_front) {
   cell = clamp(cell, (int2)(0, 0), sc->size - 1);
+  sc->fetches += 2;
   int idx = cell.y * sc->size.x + cell.x;
   float4 pc = sc->positions[idx];
   *in_front = true;
@@ -99,14 +102,14 @@ inline float hit_pixel(const TraceScene* sc, const ScreenRay* ray, float3 dir, i
 // Hierarchical traversal (FidelityFX SSSR style): climb while the ray stays in front of a cell's
 // nearest depth, descend where it may hit, and decide at full resolution with hit_pixel.
 // Returns the hit's t, or a negative value on a miss.
-inline float trace_hiz(const TraceScene* sc, const ScreenRay* ray, float3 dir, int2* hit_cell) {
+inline float trace_hiz(TraceScene* sc, const ScreenRay* ray, float3 dir, int2* hit_cell) {
   float major = fmax(fabs(ray->ds.x), fabs(ray->ds.y));
   float nudge = 0.01f / major;  // a hundredth of a pixel along the major axis
   bool deeper = ray->q0.z * ray->dq.w - ray->dq.z * ray->q0.w > 0.0f;  // depth grows with t
   int2 cell;
   float t = cell_exit(ray, 0.0f, nudge, 1.0f, &cell);  // leave the origin pixel first
   int mip = 0;
-  for (int iter = 0; iter < sc->max_iterations && t <= 1.0f; ++iter) {
+  for (; sc->iterations < sc->max_iterations && t <= 1.0f; ++sc->iterations) {
     float t_exit = cell_exit(ray, t, nudge, (float)(1 << mip), &cell);
     if (mip == 0) {
       bool in_front;
@@ -120,6 +123,7 @@ inline float trace_hiz(const TraceScene* sc, const ScreenRay* ray, float3 dir, i
       continue;
     }
     float d_min = hzb_fetch(sc->hzb, sc->levels, mip, cell);
+    ++sc->fetches;
     if (ray_depth(ray, t) < d_min) {
       // In front of everything in this cell: does the ray reach the cell's nearest depth inside it?
       float t_cross = (deeper && d_min < SSRCL_NO_SURFACE) ? ray_t_at_depth(ray, d_min) : INFINITY;
@@ -139,14 +143,13 @@ inline float trace_hiz(const TraceScene* sc, const ScreenRay* ray, float3 dir, i
 
 // Fixed steps of `step_pixels` along the major screen axis, each tested with hit_pixel against
 // the pixel it lands in: no hierarchy that could skip a thin feature, the reference tracer.
-inline float trace_linear(const TraceScene* sc, const ScreenRay* ray, float3 dir, float step_pixels,
-                          int2* hit_cell) {
+inline float trace_linear(TraceScene* sc, const ScreenRay* ray, float3 dir, float step_pixels, int2* hit_cell) {
   float major = fmax(fabs(ray->ds.x), fabs(ray->ds.y));
   int2 cell;
   float t_prev = cell_exit(ray, 0.0f, 0.01f / major, 1.0f, &cell);  // leave the origin pixel first
   float dt = step_pixels / major;
-  int steps = (int)ceil((1.0f - t_prev) / dt);
-  for (int k = 1; k <= steps; ++k) {
+  int steps = min((int)ceil((1.0f - t_prev) / dt), sc->max_iterations);
+  for (int k = 1; k <= steps; ++k, ++sc->iterations) {
     float t = fmin(t_prev + dt, 1.0f);
     cell = convert_int2(floor(ray_screen(ray, t)));
     bool in_front;
@@ -160,6 +163,35 @@ inline float trace_linear(const TraceScene* sc, const ScreenRay* ray, float3 dir
   return -1.0f;
 }
 
+// Perspective-correct DDA (McGuire and Mara 2014): visits every pixel the ray's screen line
+// crosses, in order, each tested with hit_pixel. Exhaustive at full resolution like the linear
+// march, with one test per pixel instead of one per step.
+inline float trace_dda(TraceScene* sc, const ScreenRay* ray, float3 dir, int2* hit_cell) {
+  float nudge = 0.01f / fmax(fabs(ray->ds.x), fabs(ray->ds.y));
+  int2 cell;
+  float t = cell_exit(ray, 0.0f, nudge, 1.0f, &cell);  // leave the origin pixel first
+  for (; sc->iterations < sc->max_iterations && t <= 1.0f; ++sc->iterations) {
+    float t_exit = cell_exit(ray, t, nudge, 1.0f, &cell);
+    bool in_front;
+    float t_hit = hit_pixel(sc, ray, dir, cell, t, fmin(t_exit, 1.0f), &in_front);
+    if (t_hit >= 0.0f) {
+      *hit_cell = cell;
+      return t_hit;
+    }
+    t = t_exit;
+  }
+  return -1.0f;
+}
+
+// Counting mode: per-ray texel reads summed over 1024 slots (32-bit atomics that cannot
+// overflow on any frame size; the host adds them up in 64 bits), then a histogram of iterations
+// in power-of-two bins (bin b holds [2^(b-1), 2^b), bin 0 holds 0).
+#define SSRCL_FETCH_SLOTS 1024
+inline void count_work(__global int* counters, int gid, const TraceScene* sc) {
+  atomic_add(&counters[gid % SSRCL_FETCH_SLOTS], sc->fetches);
+  atomic_inc(&counters[SSRCL_FETCH_SLOTS + (32 - clz(sc->iterations))]);
+}
+
 // Ray records, per (pixel, sample slot of this batch):
 //   ray_hit      hit: (view-space hit point, confidence >= 0); miss: (direction, -1)
 //   ray_radiance (rgb at the hit, pdf of the direction); pdf 0 marks a ray that is a delta
@@ -170,7 +202,8 @@ __kernel void trace_rays(int2 size, float16 proj, float16 inv_proj, float near_p
                          __global const int* ray_list, int listed,
                          __global const int* pixel_rays, int batch_size, int first_sample, uint seed,
                          float mirror_roughness, int roughness_mapping, float cone_scale, int tracer, float linear_step,
-                         float thickness_rel, int max_iterations, float edge_fade,
+                         float thickness_rel, int max_iterations, float edge_fade, int counting,
+                         __global int* work_counters,
                          __global const float4* color_pyramid, __global float4* ray_hit,
                          __global float4* ray_radiance) {
   int gid = get_global_id(0);
@@ -222,9 +255,12 @@ __kernel void trace_rays(int2 size, float16 proj, float16 inv_proj, float near_p
   if (!make_screen_ray(proj, size, p, p + dir * len, &ray)) return;
   if (!(fmax(fabs(ray.ds.x), fabs(ray.ds.y)) > 0.0f)) return;
 
-  TraceScene sc = {size, hzb, levels, level_count, positions, normals, thickness_rel, max_iterations};
+  TraceScene sc = {size, hzb, levels, level_count, positions, normals, thickness_rel, max_iterations, 0, 0};
   int2 cell;  // the pixel whose surface the ray hit; its colour is the hit's colour
-  float t = tracer == 1 ? trace_linear(&sc, &ray, dir, linear_step, &cell) : trace_hiz(&sc, &ray, dir, &cell);
+  float t = tracer == 1   ? trace_linear(&sc, &ray, dir, linear_step, &cell)
+            : tracer == 2 ? trace_dda(&sc, &ray, dir, &cell)
+                          : trace_hiz(&sc, &ray, dir, &cell);
+  if (counting) count_work(work_counters, gid, &sc);
   if (t < 0.0f) return;
 
   float2 s = ray_screen(&ray, t);

@@ -20,22 +20,26 @@ TraceSettings SettingsOptions::resolve() const {
   apply(s.denoise, denoise);
   if (roughnessMapping)
     s.roughnessMapping = *roughnessMapping == "linear" ? RoughnessMapping::Linear : RoughnessMapping::Squared;
-  if (tracer) s.tracer = *tracer == "linear" ? Tracer::Linear : Tracer::HiZ;
+  if (tracer) s.tracer = *tracer == "linear" ? Tracer::Linear : *tracer == "dda" ? Tracer::DDA : Tracer::HiZ;
+  apply(s.traceStride, traceStride);
   return s;
 }
 
 void addSettingsOptions(CLI::App& cmd, SettingsOptions& o) {
   const char* q = "Quality";
   cmd.add_option("--quality", o.quality,
-                 "Preset: medium (Hi-Z, 4 rays, 5x5 reuse) or reference (linear march, 256 rays)")
+                 "Preset: draft, medium (Hi-Z, 4 rays, 5x5 reuse), high or reference (linear march, 256 rays)")
       ->group(q)
       ->capture_default_str()
-      ->check(CLI::IsMember({"medium", "reference"}));
+      ->check(CLI::IsMember({"draft", "medium", "high", "reference"}));
   cmd.add_option("--spp", o.spp, "Rays per glossy pixel")->group(q)->check(CLI::Range(1, 65536));
   cmd.add_option("--seed", o.seed, "Seed of the sample sequence (same seed, same output)")->group(q);
-  cmd.add_option("--tracer", o.tracer, "hiz (hierarchical) or linear (fine steps)")
+  cmd.add_option("--tracer", o.tracer, "hiz (hierarchical), dda (every pixel crossed) or linear (fine steps)")
       ->group(q)
-      ->check(CLI::IsMember({"hiz", "linear"}));
+      ->check(CLI::IsMember({"hiz", "dda", "linear"}));
+  cmd.add_option("--trace-stride", o.traceStride, "2: glossy rays in one pixel of each 2x2, the rest borrow")
+      ->group(q)
+      ->check(CLI::IsMember({1, 2}));
   cmd.add_option("--linear-step", o.linearStep, "Step of the linear tracer, in pixels")
       ->group(q)
       ->check(CLI::Range(0.05f, 8.0f));

@@ -12,7 +12,7 @@ namespace ssrcl::cli {
 struct SettingsOptions {
   std::string quality = "medium";
   std::optional<float> maxRoughness, thickness, edgeFade, mirrorRoughness, linearStep;
-  std::optional<int> maxIterations, spp, reuseRadius;
+  std::optional<int> maxIterations, spp, reuseRadius, traceStride;
   std::optional<uint32_t> seed;
   std::optional<std::string> roughnessMapping, tracer;
   std::optional<bool> prefilter, denoise;

@@ -3,6 +3,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "ssrcl/camera.hpp"
 #include "ssrcl/device.hpp"
@@ -13,6 +14,7 @@ namespace ssrcl {
 enum class Tracer {
   HiZ,     // hierarchical min-depth traversal (default)
   Linear,  // fixed sub-pixel steps; slow, the most thorough
+  DDA,     // every pixel the ray crosses, in order (McGuire and Mara 2014)
 };
 
 enum class RoughnessMapping {
@@ -49,10 +51,16 @@ struct TraceSettings {
   Tracer tracer = Tracer::HiZ;
   float linearStepPixels = 0.5f;  // Tracer::Linear step along the ray's major screen axis
   bool denoise = false;           // edge-aware spatial filter after the resolve
+  // 2: glossy pixels trace in one pixel of each 2x2 block (a quarter of the rays) and the others
+  // resolve from their neighbours' rays (needs reuseRadius >= 1). Mirror pixels always trace.
+  int traceStride = 1;
+  bool countWork = false;  // count texel reads and iterations per ray (StageTimes); slower
 };
 
 // Named bundles of the settings above:
+//   "draft"     Hi-Z, 2 rays in one pixel of each 2x2 block, 5x5 reuse, 64 iterations.
 //   "medium"    (the default TraceSettings) Hi-Z, 4 rays, 5x5 ray reuse.
+//   "high"      Hi-Z, 16 rays, 5x5 ray reuse, edge-aware filter.
 //   "reference" Linear march at half-pixel steps, 256 rays per pixel, no reuse, no prefilter, no
 //               filter: the best answer screen-space information allows, the yardstick.
 // Throws Error(InvalidArgument) for an unknown name.
@@ -64,6 +72,10 @@ struct StageTimes {
   std::map<std::string, double> ms;
   long long tracedPixels = 0;  // pixels that got rays (not sky, not above max roughness)
   long long tracedRays = 0;    // rays: one per mirror-like pixel, samplesPerPixel per glossy one
+  // With TraceSettings::countWork: depth-buffer texels read by all rays, and how many rays took
+  // 0, 1, 2-3, 4-7, ... traversal iterations (bin b counts [2^(b-1), 2^b)).
+  long long depthFetches = 0;
+  std::vector<long long> iterationHistogram;
 
 };
 
@@ -95,6 +107,8 @@ class Pipeline {
 
   const Image& output(const std::string& name) const;
   const StageTimes& stageTimes() const;
+  // Device memory the committed pipeline holds, in bytes (inputs, pyramids, ray records, outputs).
+  size_t deviceBytes() const;
   // The HZB mip chain of the last execute, for tests and tools: level 0 is the nearest depth of
   // each pixel's surface over its square, each coarser level the min of the texels under it.
   std::vector<Image> readHzb() const;
