@@ -130,14 +130,14 @@ Primitive box(const std::string& name, dvec3 center, dvec3 halfSize, double yawD
   return p;
 }
 
-std::vector<std::string> sceneNames() { return {"spheres_on_mirror", "mirror_wall"}; }
+std::vector<std::string> sceneNames() { return {"spheres_on_mirror", "mirror_wall", "half_sky"}; }
 
 Scene makeScene(const std::string& name) {
   const auto mat = [](double r, double g, double b) { return Material{dvec3(r, g, b)}; };
   const dvec3 up(0, 1, 0);
   Scene s;
   s.name = name;
-  if (name == "spheres_on_mirror") {
+  if (name == "spheres_on_mirror" || name == "half_sky") {
     s.primitives = {
         rectangle("floor", dvec3(0.0), up, 8, 8, mat(0.45, 0.45, 0.5)),
         sphere("red", dvec3(0, 1, 0), 1.0, mat(0.9, 0.3, 0.25)),
@@ -150,6 +150,10 @@ Scene makeScene(const std::string& name) {
     };
     s.view.eye = dvec3(0, 4.5, 8.5);
     s.view.target = dvec3(0, 0.6, 0);  // pitch atan(3.9 / 8.5) ~ 24.6 degrees down
+    if (name == "half_sky") {  // the same objects seen from low, looking level: sky fills the top half
+      s.view.eye = dvec3(0, 1.2, 9.5);
+      s.view.target = dvec3(0, 1.2, 0);
+    }
   } else if (name == "mirror_wall") {
     s.primitives = {
         rectangle("floor", dvec3(0.0), up, 9, 9, mat(0.45, 0.45, 0.5)),

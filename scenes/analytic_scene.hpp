@@ -75,6 +75,7 @@ struct Scene {
 //   "mirror_wall"        mirror floor plus a vertical mirror wall (thin box) on the left, turned
 //                        20 degrees toward the camera so it reflects 4 boxes and 2 spheres; camera
 //                        looking down ~17 degrees.
+//   "half_sky"           spheres_on_mirror seen level from low: the sky fills the top half.
 // Every surface has roughness 0.
 Scene makeScene(const std::string& name);
 std::vector<std::string> sceneNames();

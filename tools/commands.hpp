@@ -9,5 +9,7 @@ using Action = std::function<int()>;
 
 Action addDevicesCommand(CLI::App& app);
 Action addTraceCommand(CLI::App& app);
+Action addBatchCommand(CLI::App& app);
+Action addBenchCommand(CLI::App& app);
 
 }  // namespace ssrcl::cli

@@ -1,0 +1,63 @@
+#include "bench_inputs.hpp"
+
+#include <filesystem>
+#include <stdexcept>
+
+#include "scenes/analytic_scene.hpp"
+#include "ssrcl/error.hpp"
+
+namespace ssrcl::cli {
+
+BenchInput loadBenchFile(const std::string& exr) {
+  GBufferSource source;
+  source.file = exr;
+  BenchInput in;
+  in.name = std::filesystem::path(exr).stem().string();
+  in.gbuffer = loadGBuffer(source);
+  std::filesystem::path p(exr);
+  in.camera = loadCameraJson((p.parent_path() / (p.stem().string() + ".camera.json")).string());
+  return in;
+}
+
+BenchInput loadBundledSample(const std::string& name) {
+  if (name != "mirror" && name != "glossy")
+    throw Error(ErrorCode::InvalidArgument, "--sample: expected mirror or glossy, got '" + name + "'");
+  BenchInput in = loadBenchFile(std::string(SSRCL_SOURCE_DIR) + "/samples/blender/" + name + "/" + name + ".exr");
+  in.name = "sample " + name;
+  return in;
+}
+
+BenchInput generateScene(const std::string& scene, int width, int height, float roughness) {
+  test::Scene s;
+  try {
+    s = test::makeScene(scene);
+  } catch (const std::invalid_argument&) {
+    std::string names;
+    for (const auto& n : test::sceneNames()) names += (names.empty() ? "" : ", ") + n;
+    throw Error(ErrorCode::InvalidArgument, "--scene: unknown scene '" + scene + "' (known: " + names + ")");
+  }
+  BenchInput in;
+  in.camera = test::makeCamera(s.view, width, height);
+  test::AnalyticGBuffer g = test::renderGBuffer(s, in.camera);
+  in.gbuffer = static_cast<GBuffer&>(g);
+  if (roughness >= 0.0f)
+    for (float& r : in.gbuffer.roughness.data) r = roughness;
+  in.name = scene + " " + std::to_string(width) + "x" + std::to_string(height) +
+            (roughness >= 0.0f ? " r" + std::to_string(roughness).substr(0, 4) : "");
+  return in;
+}
+
+std::pair<int, int> parseSize(const std::string& text, const std::string& option) {
+  const auto x = text.find('x');
+  try {
+    if (x != std::string::npos) {
+      size_t a = 0, b = 0;
+      const int w = std::stoi(text.substr(0, x), &a), h = std::stoi(text.substr(x + 1), &b);
+      if (a == x && b == text.size() - x - 1 && w > 0 && h > 0 && w <= 16384 && h <= 16384) return {w, h};
+    }
+  } catch (const std::exception&) {
+  }
+  throw Error(ErrorCode::InvalidArgument, option + ": expected WIDTHxHEIGHT (up to 16384x16384), got '" + text + "'");
+}
+
+}  // namespace ssrcl::cli

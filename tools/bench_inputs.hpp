@@ -1,0 +1,27 @@
+#pragma once
+#include <string>
+#include <vector>
+
+#include "ssrcl/camera.hpp"
+#include "ssrcl/io.hpp"
+
+namespace ssrcl::cli {
+
+// One frame to benchmark: a G-buffer and its camera.
+struct BenchInput {
+  std::string name;
+  GBuffer gbuffer;
+  Camera camera;
+};
+
+// A G-buffer EXR (Blender naming) with its <stem>.camera.json sidecar.
+BenchInput loadBenchFile(const std::string& exr);
+// A bundled sample: "mirror" or "glossy" (samples/blender/<name>/<name>.exr).
+BenchInput loadBundledSample(const std::string& name);
+// A generated analytic scene at a resolution; roughness >= 0 makes every surface that rough.
+BenchInput generateScene(const std::string& scene, int width, int height, float roughness);
+
+// "1920x1080" -> {1920, 1080}; throws Error(InvalidArgument) naming `option`.
+std::pair<int, int> parseSize(const std::string& text, const std::string& option);
+
+}  // namespace ssrcl::cli
