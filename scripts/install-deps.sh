@@ -2,7 +2,8 @@
 # Installs the Debian packages ssrcl builds and tests with; does nothing when all are present.
 set -euo pipefail
 packages=(build-essential cmake ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers pocl-opencl-icd
-          libopenexr-dev libglm-dev libcli11-dev nlohmann-json3-dev libgtest-dev libbenchmark-dev clinfo)
+          libopenexr-dev libglm-dev libcli11-dev nlohmann-json3-dev libgtest-dev libbenchmark-dev clinfo
+          slurmctld slurmd slurm-client munge)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -1,0 +1,23 @@
+#pragma once
+#include <string>
+
+namespace ssrcl::test {
+
+// A rendered shot made up: frames <directory>/<prefix>.<frame, 4 digits>.exr (Blender multilayer
+// naming, half colour, float data passes) with <prefix>.<frame>.camera.json sidecars, of an
+// analytic scene seen by a camera orbiting it by `degreesPerFrame`.
+struct AnalyticSequence {
+  std::string directory;
+  std::string prefix = "shot";
+  std::string scene = "spheres_on_mirror";
+  int firstFrame = 1001;
+  int frameCount = 8;
+  int width = 64, height = 36;
+  double degreesPerFrame = 2.0;
+  double roughness = -1.0;  // >= 0: every surface this rough (the scenes are mirrors)
+};
+
+// Writes the frames; returns the pattern naming them ("<directory>/<prefix>.####.exr").
+std::string writeAnalyticSequence(const AnalyticSequence& sequence);
+
+}  // namespace ssrcl::test

@@ -1,0 +1,128 @@
+#include <algorithm>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <thread>
+
+#include "batch_plan.hpp"
+#include "batch_report.hpp"
+#include "batch_runner.hpp"
+#include "commands.hpp"
+#include "device_option.hpp"
+#include "exit_codes.hpp"
+#include "frame_sequence.hpp"
+#include "gbuffer_input.hpp"
+#include "progress_line.hpp"
+#include "settings_options.hpp"
+#include "stop_signal.hpp"
+
+namespace ssrcl::cli {
+namespace {
+
+struct BatchOptions {
+  BatchRequest request;
+  std::string device, shard = "0/1", report;
+  GBufferInputOptions in;
+  SettingsOptions settings;
+  // Readers and as many writers; a quarter of the cores leaves the rest to a CPU device.
+  int ioThreads = int(std::clamp(std::thread::hardware_concurrency() / 4, 1u, 4u));
+  bool overwrite = false, failFast = false, quiet = false, dryRun = false;
+};
+
+int exitCodeOf(const BatchOutcome& b) {
+  if (b.stopSignal) return 128 + b.stopSignal;  // as if the signal had ended it
+  for (const FrameOutcome& f : b.frames)
+    if (f.status == FrameStatus::Failed) return f.exitCode;
+  return kExitOk;
+}
+
+int runBatch(const BatchOptions& o) {
+  const Shard shard = parseShard(o.shard);
+  std::vector<FrameJob> jobs;
+  {
+    std::vector<FrameJob> all = planBatch(o.request);
+    for (size_t i = 0; i < all.size(); ++i)
+      if (shard.owns(i)) jobs.push_back(std::move(all[i]));
+  }
+  std::vector<FrameOutcome> outcomes(jobs.size());
+  std::vector<const FrameJob*> toRun;
+  for (size_t i = 0; i < jobs.size(); ++i) {
+    std::error_code ec;
+    if (!o.overwrite && std::filesystem::exists(jobs[i].output, ec))
+      outcomes[i].status = FrameStatus::Skipped;
+    else
+      toRun.push_back(&jobs[i]);
+  }
+  if (o.dryRun) {
+    for (size_t i = 0; i < jobs.size(); ++i)
+      std::cout << jobs[i].name << "\t" << jobs[i].input << "\t" << jobs[i].camera << "\t" << jobs[i].output << "\t"
+                << (outcomes[i].status == FrameStatus::Skipped ? "skip" : "run") << "\n";
+    return kExitOk;
+  }
+
+  StopSignal stop;
+  BatchRun run;
+  std::string deviceName;
+  if (!toRun.empty()) {
+    Device device = openDevice(o.device);
+    deviceName = device.info().name;
+    BatchRunner runner(device, o.in, o.settings.resolve(), o.failFast, o.ioThreads);
+    removeStaleTemporaries(toRun);
+    ProgressLine progress(toRun.size(), !o.quiet);
+    size_t finished = 0, failed = 0;
+    run = runner.run(
+        jobs, outcomes, [&] { return stop.requested(); },
+        [&](size_t i) {
+          ++finished;
+          if (outcomes[i].status == FrameStatus::Failed) {
+            ++failed;
+            progress.note("ssrcl: frame " + jobs[i].name + ": " + outcomes[i].error);
+          }
+          progress.update(finished, failed);
+        });
+    progress.finish();
+  }
+
+  const BatchOutcome batch{jobs, outcomes, run, deviceName, shard, stop.signal()};
+  if (!o.quiet) printSummary(std::cerr, batch);
+  if (!o.report.empty()) writeReport(o.report, batch);
+  return exitCodeOf(batch);
+}
+
+}  // namespace
+
+Action addBatchCommand(CLI::App& app) {
+  auto o = std::make_shared<BatchOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "batch", "Compute the reflection passes of a frame sequence: resumable, one device for all frames");
+  cmd->add_option("input", o->request.inputs,
+                  "Frames: a pattern ('sh010.####.exr', '%04d', '@@@@'), a quoted glob ('renders/*.exr') or files")
+      ->required();
+  cmd->add_option("-o,--output", o->request.output,
+                  "Outputs: a pattern ('refl/sh010.####.exr'), a template with {stem} ('refl/{stem}.refl.exr'), "
+                  "or a directory ('refl/': <stem>.refl.exr in it)")
+      ->required();
+  cmd->add_option("--frames", o->request.frames,
+                  "Frames of a pattern: 1001-1240, 1001-1240x2 (every 2nd), 1001,1005,1010-1020 (default: those on "
+                  "disk)");
+  cmd->add_option("--camera", o->request.camera,
+                  "One camera JSON for all frames, or a pattern/{stem} template (default: <stem>.camera.json beside "
+                  "each frame)");
+  cmd->add_option("--device", o->device, "OpenCL device: index from `ssrcl devices`, cpu, gpu or default");
+  cmd->add_option("--shard", o->shard,
+                  "K/N: process only share K (0-based) of N, e.g. $SLURM_ARRAY_TASK_ID/$SLURM_ARRAY_TASK_COUNT")
+      ->capture_default_str();
+  cmd->add_option("--io-threads", o->ioThreads, "Threads reading frames, and as many writing them")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 64));
+  cmd->add_flag("--overwrite", o->overwrite, "Recompute frames whose output exists (default: skip them)");
+  cmd->add_flag("--fail-fast", o->failFast, "Stop at the first frame that fails (default: report it, go on)");
+  cmd->add_option("--report", o->report, "Write a JSON report: totals, frames/s, each frame's status and times");
+  cmd->add_flag("-q,--quiet", o->quiet, "No progress line and no summary; failed frames are still reported");
+  cmd->add_flag("--dry-run", o->dryRun, "List name, input, camera, output and run/skip for each frame; run nothing");
+  addChannelOptions(*cmd, o->in);
+  addSettingsOptions(*cmd, o->settings);
+  return [o] { return runBatch(*o); };
+}
+
+}  // namespace ssrcl::cli

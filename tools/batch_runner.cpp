@@ -1,0 +1,154 @@
+#include "batch_runner.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <filesystem>
+#include <mutex>
+#include <optional>
+#include <thread>
+
+#include "bounded_queue.hpp"
+#include "exit_codes.hpp"
+#include "ssrcl/error.hpp"
+#include "ssrcl/io.hpp"
+
+namespace ssrcl::cli {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+// A frame on its way through the stages; `outcome` gathers each stage's time, or the failure.
+struct FrameInFlight {
+  size_t index = 0;
+  FrameOutcome outcome;
+  GBuffer gbuffer;
+  Camera camera;
+  Image reflection, distance;
+  bool deviceUnusable = false;  // no later frame can succeed either: stop rather than fail each
+};
+
+// Runs one stage of a frame, timing it into `seconds`; a failure is recorded in the outcome.
+template <class Stage>
+bool attempt(FrameInFlight& f, double& seconds, int ioExitCode, Stage&& stage) {
+  const Clock::time_point start = Clock::now();
+  try {
+    stage();
+    seconds = secondsSince(start);
+    return true;
+  } catch (const Error& e) {
+    f.outcome.error = e.what();
+    f.outcome.exitCode = e.code() == ErrorCode::IoError ? ioExitCode : exitCodeFor(e.code());
+    f.deviceUnusable = e.code() == ErrorCode::KernelBuild || e.code() == ErrorCode::NoDevice;
+  } catch (const std::exception& e) {
+    f.outcome.error = std::string("internal error: ") + e.what();
+    f.outcome.exitCode = kExitInternal;
+  }
+  f.outcome.status = FrameStatus::Failed;
+  return false;
+}
+
+}  // namespace
+
+const char* statusName(FrameStatus status) {
+  switch (status) {
+    case FrameStatus::NotRun:
+      return "not_run";
+    case FrameStatus::Done:
+      return "done";
+    case FrameStatus::Skipped:
+      return "skipped";
+    case FrameStatus::Failed:
+      return "failed";
+  }
+  return "?";
+}
+
+BatchRunner::BatchRunner(const Device& device, const GBufferInputOptions& input, const TraceSettings& settings,
+                         bool failFast, int ioThreads)
+    : pipeline_(device), input_(input), failFast_(failFast), ioThreads_(std::max(1, ioThreads)) {
+  pipeline_.settings() = input.applyTo(settings);
+}
+
+BatchRun BatchRunner::run(const std::vector<FrameJob>& jobs, std::vector<FrameOutcome>& outcomes,
+                          const std::function<bool()>& stopRequested,
+                          const std::function<void(size_t)>& frameFinished) {
+  const Clock::time_point start = Clock::now();
+  BatchRun result;
+  std::atomic<bool> halted{false};
+  std::mutex finishing;
+  const auto stopping = [&] { return halted.load() || stopRequested(); };
+  const auto finish = [&](FrameInFlight& f) {
+    std::lock_guard<std::mutex> lock(finishing);
+    if (f.outcome.status != FrameStatus::Failed) f.outcome.status = FrameStatus::Done;
+    result.deviceMs += f.outcome.deviceMs;
+    if (f.outcome.status == FrameStatus::Failed && (failFast_ || f.deviceUnusable)) halted = true;
+    outcomes[f.index] = f.outcome;
+    frameFinished(f.index);
+  };
+
+  // Each I/O thread holds a frame, and each queue as many again: enough to hide reading and
+  // writing behind the device, with a bounded number of frames in memory.
+  BoundedQueue<FrameInFlight> read(ioThreads_), computed(ioThreads_);
+  std::vector<size_t> todo;
+  for (size_t i = 0; i < jobs.size(); ++i)
+    if (outcomes[i].status == FrameStatus::NotRun) todo.push_back(i);
+  std::atomic<size_t> nextToRead{0};
+  std::atomic<int> readersLeft{ioThreads_};
+  std::vector<std::thread> io;
+  for (int t = 0; t < ioThreads_; ++t) {
+    io.emplace_back([&] {
+      for (size_t k; !stopping() && (k = nextToRead++) < todo.size();) {
+        FrameInFlight f;
+        f.index = todo[k];
+        attempt(f, f.outcome.readSeconds, kExitUsage, [&] {
+          f.gbuffer = loadGBuffer(input_.sourceFor(jobs[f.index].input));
+          f.camera = loadCameraFor(jobs[f.index].camera, f.gbuffer);
+        });
+        if (!read.push(std::move(f))) break;
+      }
+      if (--readersLeft == 0) read.close();
+    });
+    io.emplace_back([&] {
+      while (std::optional<FrameInFlight> f = computed.pop()) {
+        attempt(*f, f->outcome.writeSeconds, kExitOutput, [&] {
+          const std::filesystem::path parent = std::filesystem::path(jobs[f->index].output).parent_path();
+          if (!parent.empty()) std::filesystem::create_directories(parent);
+          writeReflectionExr(jobs[f->index].output, f->reflection, f->distance);
+        });
+        finish(*f);
+      }
+    });
+  }
+
+  while (std::optional<FrameInFlight> f = read.pop()) {
+    if (stopping()) break;  // frames read ahead are abandoned: nothing of them was written
+    if (f->outcome.status == FrameStatus::Failed) {
+      finish(*f);
+      continue;
+    }
+    const bool computedOk = attempt(*f, f->outcome.computeSeconds, kExitUsage, [&] {
+      setFrame(pipeline_, f->gbuffer, f->camera);
+      pipeline_.commit();
+      pipeline_.execute();
+      for (const auto& [stage, ms] : pipeline_.stageTimes().ms) f->outcome.deviceMs += ms;
+      f->reflection = pipeline_.output("reflection");  // copies: the pipeline reuses its outputs
+      f->distance = pipeline_.output("distance");
+      f->gbuffer = GBuffer{};
+    });
+    if (!computedOk)
+      finish(*f);
+    else
+      computed.push(std::move(*f));
+  }
+  read.close();
+  computed.close();
+  for (std::thread& t : io) t.join();
+  result.halted = halted;
+  result.wallSeconds = secondsSince(start);
+  return result;
+}
+
+}  // namespace ssrcl::cli

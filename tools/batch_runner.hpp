@@ -1,0 +1,55 @@
+#pragma once
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "batch_plan.hpp"
+#include "gbuffer_input.hpp"
+#include "ssrcl/device.hpp"
+#include "ssrcl/pipeline.hpp"
+
+namespace ssrcl::cli {
+
+enum class FrameStatus {
+  NotRun,   // not reached: interrupted, or stopped after a failure
+  Done,     // output written
+  Skipped,  // output existed (no --overwrite)
+  Failed,
+};
+const char* statusName(FrameStatus status);
+
+struct FrameOutcome {
+  FrameStatus status = FrameStatus::NotRun;
+  std::string error;                                             // why it failed: names the file and the problem
+  int exitCode = 0;                                              // what the failure would make `ssrcl trace` exit with
+  double readSeconds = 0, computeSeconds = 0, writeSeconds = 0;  // host wall time of each stage
+  double deviceMs = 0;                                           // the pipeline's per-stage device times, summed
+};
+
+struct BatchRun {
+  double wallSeconds = 0;
+  double deviceMs = 0;  // over all frames: device busy fraction = deviceMs / 1000 / wallSeconds
+  bool halted = false;  // stopped early by --fail-fast or a device that cannot run at all
+};
+
+// Runs frames through one Pipeline on one Device, so kernels are compiled once, while `ioThreads`
+// threads read the next frames and as many write the previous ones.
+class BatchRunner {
+ public:
+  BatchRunner(const Device& device, const GBufferInputOptions& input, const TraceSettings& settings, bool failFast,
+              int ioThreads);
+
+  // Processes, in order, the jobs whose outcome is NotRun and records their outcomes. Starts no
+  // new frame once stopRequested() is true; the frame on the device is finished and written.
+  // frameFinished(i) is called once per frame done or failed, never two at a time.
+  BatchRun run(const std::vector<FrameJob>& jobs, std::vector<FrameOutcome>& outcomes,
+               const std::function<bool()>& stopRequested, const std::function<void(size_t)>& frameFinished);
+
+ private:
+  Pipeline pipeline_;
+  GBufferInputOptions input_;
+  bool failFast_;
+  int ioThreads_;
+};
+
+}  // namespace ssrcl::cli
