@@ -84,6 +84,11 @@ Camera loadCameraJson(const std::string& path) {
     const auto start = what.find("] ");
     fail(ErrorCode::InvalidInput, path,
          "invalid JSON: " + (start == std::string::npos ? what : what.substr(start + 2)));
+  } catch (const json::exception& e) {  // e.g. out_of_range.406: a number beyond double (1e999)
+    const std::string what = e.what();
+    const auto start = what.find("] ");
+    fail(ErrorCode::InvalidInput, path,
+         "invalid JSON: " + (start == std::string::npos ? what : what.substr(start + 2)));
   } catch (const std::exception& e) {  // read errors, e.g. a directory, surface as ios_failure
     fail(ErrorCode::IoError, path, std::string("cannot read (") + e.what() + ")");
   }

@@ -1,5 +1,9 @@
 #include "ssrcl/device.hpp"
 
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdlib>
 #include <string>
 #include <utility>
 #include <vector>
@@ -55,6 +59,39 @@ void rethrowClError(const cl::Error& e, const std::string& context) {
   bool oom = code == CL_MEM_OBJECT_ALLOCATION_FAILURE || code == CL_OUT_OF_RESOURCES || code == CL_OUT_OF_HOST_MEMORY ||
              code == CL_INVALID_BUFFER_SIZE;
   throw Error(oom ? ErrorCode::OutOfMemory : ErrorCode::OpenCL, message);
+}
+
+namespace {
+
+std::string mebibytes(unsigned long long bytes) {
+  return std::to_string((bytes + (1ull << 20) - 1) >> 20) + " MiB";
+}
+
+}  // namespace
+
+void checkDeviceMemory(const Device::Impl& device, unsigned long long largestBuffer, unsigned long long totalBytes,
+                       const std::string& what) {
+  unsigned long long maxAlloc = 0, global = 0;
+  try {
+    maxAlloc = device.device.getInfo<CL_DEVICE_MAX_MEM_ALLOC_SIZE>();
+    global = device.device.getInfo<CL_DEVICE_GLOBAL_MEM_SIZE>();
+  } catch (const cl::Error& e) {
+    rethrowClError(e, "querying the memory of '" + device.info.name + "'");
+  }
+  if (largestBuffer > maxAlloc)
+    throw Error(ErrorCode::OutOfMemory, what + " needs a device buffer of " + mebibytes(largestBuffer) + " but '" +
+                                            device.info.name + "' allows at most " + mebibytes(maxAlloc) +
+                                            " per buffer");
+  // A CPU device's memory is the host's: PoCL reports a fraction of it as its global memory but
+  // does not hold allocations to that, so the bound there is the machine's physical memory.
+  unsigned long long limit = global;
+  if (!device.info.isGpu) {
+    const long pages = sysconf(_SC_PHYS_PAGES), pageSize = sysconf(_SC_PAGE_SIZE);
+    if (pages > 0 && pageSize > 0) limit = std::max(limit, static_cast<unsigned long long>(pages) * pageSize);
+  }
+  if (totalBytes > limit)
+    throw Error(ErrorCode::OutOfMemory, what + " needs " + mebibytes(totalBytes) + " of device memory but '" +
+                                            device.info.name + "' has " + mebibytes(limit));
 }
 
 }  // namespace detail
@@ -136,8 +173,12 @@ const cl::Program& Device::Impl::program() {
   } catch (const cl::Error& e) {
     detail::rethrowClError(e, "creating the ssrcl OpenCL program");
   }
+  // SSRCL_KERNEL_BUILD_OPTIONS adds OpenCL compiler options, for diagnosing a driver (e.g.
+  // -cl-opt-disable) and for the tests of this error path (-DSSRCL_TEST_BREAK_BUILD).
+  std::string options = "-cl-std=CL1.2";
+  if (const char* extra = std::getenv("SSRCL_KERNEL_BUILD_OPTIONS")) options += std::string(" ") + extra;
   try {
-    program_.build({device}, "-cl-std=CL1.2");
+    program_.build({device}, options.c_str());
   } catch (const cl::Error& e) {
     std::string log;
     try {
@@ -145,8 +186,11 @@ const cl::Program& Device::Impl::program() {
     } catch (const cl::Error&) {
       log = "(the driver gave no build log)";
     }
+    if (log.find_first_not_of(" \t\r\n") == std::string::npos) log = "(the driver gave an empty build log)";
     throw Error(ErrorCode::KernelBuild,
-                "OpenCL kernels failed to build on '" + info.name + "': " + detail::clErrorName(e.err()), log);
+                "OpenCL kernels failed to build on '" + info.name + "': " + detail::clErrorName(e.err()) +
+                    " (options: " + options + ")",
+                log);
   }
   built_ = true;
   return program_;

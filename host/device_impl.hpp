@@ -22,4 +22,15 @@ struct Device::Impl {
   bool built_ = false;
 };
 
+namespace detail {
+
+// Throws Error(OutOfMemory), naming `what` (e.g. "a 8192x8192 frame") and the sizes, when a
+// buffer of `largestBuffer` bytes exceeds the device's CL_DEVICE_MAX_MEM_ALLOC_SIZE or all
+// buffers together (`totalBytes`) its CL_DEVICE_GLOBAL_MEM_SIZE (for CPU devices, whose memory
+// is the host's, the larger of that and the machine's physical memory). Drivers that allocate
+// lazily (PoCL, most GPU drivers) would otherwise fail later, or not at all until the host runs out.
+void checkDeviceMemory(const Device::Impl& device, unsigned long long largestBuffer, unsigned long long totalBytes,
+                       const std::string& what);
+
+}  // namespace detail
 }  // namespace ssrcl

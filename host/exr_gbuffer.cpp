@@ -9,8 +9,15 @@
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfInputPart.h>
 #include <OpenEXR/ImfMultiPartInputFile.h>
+#include <OpenEXR/ImfPartType.h>
+
+#include <unistd.h>
 
 #include <algorithm>
+#include <climits>
+#include <cstdint>
+#include <cstdio>
+#include <fstream>
 #include <map>
 #include <memory>
 #include <new>
@@ -38,6 +45,175 @@ void guarded(const std::string& path, const char* doing, F&& operation) {
   }
 }
 
+// Refuses a G-buffer before allocating it: beyond 2^30 pixels (the kernels index pixels with
+// 32-bit ints; validateCamera has the same bound), or needing more memory than the machine has.
+// A tiny file may declare any size (its header is all it takes), and allocating first would
+// leave the kernel's out-of-memory killer to answer instead of a message.
+void checkFrameSize(const std::string& path, int width, int height, std::size_t channels) {
+  const long long pixels = static_cast<long long>(width) * height;
+  const std::string size = std::to_string(width) + "x" + std::to_string(height);
+  if (pixels > (1LL << 30))
+    throw Error(ErrorCode::InvalidInput, path + ": the G-buffer is " + size + " = " + std::to_string(pixels) +
+                                             " pixels, more than the 1073741824 (2^30) a frame may have");
+  const double bytes = double(pixels) * double(channels) * sizeof(float);
+  const long pages = sysconf(_SC_PHYS_PAGES), pageSize = sysconf(_SC_PAGE_SIZE);
+  const double memory = pages > 0 && pageSize > 0 ? double(pages) * double(pageSize) : 0.0;
+  if (memory > 0 && bytes > memory) {
+    char text[160];
+    std::snprintf(text, sizeof text, ": the %s G-buffer needs %.1f GiB of memory, more than this machine's %.1f GiB",
+                  size.c_str(), bytes / 1073741824.0, memory / 1073741824.0);
+    throw Error(ErrorCode::OutOfMemory, path + text);
+  }
+}
+
+// Checks an EXR header before OpenEXR reads it. OpenEXR (3.1) allocates what a header declares
+// before finding the file too short: a 2 KB file whose 'type' string attribute claims 1.8 GB
+// makes it allocate 1.8 GB (found by fuzz/fuzz_gbuffer), a scanline image 2^31 lines high an
+// offset table of 16 GB, a wide one line buffers of the width. So the header is walked here the
+// way OpenEXR reads it (fixed-size attribute types read their size whatever the size field says,
+// the channel list reads up to its empty name, strings, vectors, previews and unknown types
+// allocate what they declare), and refused when any of that would not fit in the file, when a
+// part's offset table (8 bytes a chunk) would not, when its data window exceeds the 2^30 pixels a
+// frame may have, or when one decoded chunk would exceed 2 GB. Files without the EXR magic
+// number are left to OpenEXR to refuse. Throws Error(IoError) naming the file.
+void checkHeaderSizes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return;  // OpenEXR reports why
+  in.seekg(0, std::ios::end);
+  const long long fileSize = static_cast<long long>(in.tellg());
+  in.seekg(0);
+  unsigned char start[8];
+  if (!in.read(reinterpret_cast<char*>(start), 8) || start[0] != 0x76 || start[1] != 0x2f || start[2] != 0x31 ||
+      start[3] != 0x01)
+    return;
+  const bool multiPart = (start[5] & 0x10) != 0, singleTiled = (start[5] & 0x02) != 0;
+  const auto bad = [&](const std::string& problem) {
+    throw Error(ErrorCode::IoError, path + ": not a readable OpenEXR file (" + problem + ")");
+  };
+  const auto left = [&] { return fileSize - static_cast<long long>(in.tellg()); };
+  const auto need = [&](long long bytes, const std::string& what) {
+    if (bytes < 0 || bytes > left())
+      bad(what + " declares " + std::to_string(bytes) + " bytes; the file has " + std::to_string(left()) + " left");
+  };
+  const auto readName = [&](std::string& name) {
+    name.clear();
+    for (char c; in.get(c);) {
+      if (c == '\0') return;
+      if (name.size() >= 255) bad("a header name is longer than 255 characters");
+      name += c;
+    }
+    bad("the header ends early");
+  };
+  const auto readBytes = [&](long long n) {
+    need(n, "the header");
+    std::string v(size_t(n), '\0');
+    in.read(v.data(), n);
+    return v;
+  };
+  const auto int32At = [](const std::string& v, size_t at) {
+    return v.size() >= at + 4 ? static_cast<int32_t>(uint32_t(uint8_t(v[at])) | uint32_t(uint8_t(v[at + 1])) << 8 |
+                                                     uint32_t(uint8_t(v[at + 2])) << 16 | uint32_t(uint8_t(v[at + 3])) << 24)
+                              : 0;
+  };
+  // Bytes OpenEXR 3.1 reads for each fixed-size attribute type, whatever the size field says.
+  static const std::map<std::string, int> kFixed = {
+      {"box2i", 16}, {"box2f", 16}, {"chromaticities", 32}, {"compression", 1}, {"deepImageState", 1},
+      {"double", 8}, {"envmap", 1}, {"float", 4}, {"int", 4}, {"keycode", 28}, {"lineOrder", 1}, {"m33f", 36},
+      {"m33d", 72}, {"m44f", 64}, {"m44d", 128}, {"rational", 8}, {"tiledesc", 9}, {"timecode", 8}, {"v2i", 8},
+      {"v2f", 8}, {"v2d", 16}, {"v3i", 12}, {"v3f", 12}, {"v3d", 24}};
+
+  long long tableBytes = 0;
+  for (int part = 0;; ++part) {
+    std::string dataWindow, tiles, compression, chunkCount, partType;
+    long long pixelBytes = 0;  // one pixel of every channel, at full resolution
+    int attributes = 0;
+    for (;; ++attributes) {
+      std::string name, type;
+      readName(name);
+      if (name.empty()) break;
+      readName(type);
+      const int32_t size = int32At(readBytes(4), 0);
+      const std::string what = "header attribute '" + name + "' (" + type + ")";
+      if (size < 0) bad(what + " has a negative size");
+      const auto fixed = kFixed.find(type);
+      std::string value;
+      if (fixed != kFixed.end()) {
+        value = readBytes(fixed->second);
+      } else if (type == "chlist") {
+        for (std::string channel;;) {  // name, then type, pLinear, 3 reserved, xSampling, ySampling
+          readName(channel);
+          if (channel.empty()) break;
+          const std::string c = readBytes(16);
+          const int32_t pixelType = int32At(c, 0), xs = int32At(c, 8), ys = int32At(c, 12);
+          pixelBytes += pixelType == 1 ? 2 : 4;
+          if (xs < 1 || ys < 1) bad("channel '" + channel + "' has a sampling rate below 1");
+        }
+      } else if (type == "preview") {
+        const std::string wh = readBytes(8);  // width, height, then 4 bytes a pixel
+        const double bytes = 4.0 * uint32_t(int32At(wh, 0)) * uint32_t(int32At(wh, 4));
+        if (bytes > double(left())) need(static_cast<long long>(std::min(bytes, 9e18)), what);
+        in.seekg(static_cast<long long>(bytes), std::ios::cur);
+      } else if (type == "stringvector") {
+        need(size, what);
+        for (long long read = 0; read < size;) {
+          const int32_t length = int32At(readBytes(4), 0);
+          need(length, what + ", one of its strings,");
+          in.seekg(length, std::ios::cur);
+          read += 4 + length;
+        }
+      } else {  // string, floatvector, idmanifest and unknown (opaque) types: `size` bytes
+        need(size, what);
+        if (name == "type" || name == "chunkCount") value = readBytes(size);
+        else in.seekg(size, std::ios::cur);
+      }
+      if (name == "dataWindow") dataWindow = value;
+      if (name == "tiles") tiles = value;
+      if (name == "compression") compression = value;
+      if (name == "chunkCount") chunkCount = value;
+      if (name == "type") partType = value;
+    }
+    if (attributes == 0) {
+      if (part == 0) bad("empty header");
+      break;  // the empty header that ends a multi-part file's list
+    }
+    const bool tiled = (!multiPart && singleTiled) || partType.find("tile") != std::string::npos;
+    long long chunks = 0, width = 0, height = 0, chunkLines = 1, chunkWidth = 0;
+    if (dataWindow.size() == 16) {
+      width = static_cast<long long>(int32At(dataWindow, 8)) - int32At(dataWindow, 0) + 1;
+      height = static_cast<long long>(int32At(dataWindow, 12)) - int32At(dataWindow, 4) + 1;
+    }
+    if (width > 0 && height > 0) {
+      if (width > (1LL << 30) || height > (1LL << 30) || width * height > (1LL << 30))
+        bad("its data window is " + std::to_string(width) + "x" + std::to_string(height) +
+            ", more than the 1073741824 (2^30) pixels a frame may have");
+      if (tiled && tiles.size() >= 8) {
+        const long long tx = std::max<long long>(1, uint32_t(int32At(tiles, 0)));
+        const long long ty = std::max<long long>(1, uint32_t(int32At(tiles, 4)));
+        chunks = ((width + tx - 1) / tx) * ((height + ty - 1) / ty);  // level 0 alone: a lower bound
+        chunkWidth = std::min(tx, width);
+        chunkLines = std::min(ty, height);
+      } else if (!tiled) {
+        // Scanlines per chunk of each compression (NO, RLE, ZIPS, ZIP, PIZ, PXR24, B44, B44A, DWAA, DWAB).
+        static const int kLines[] = {1, 1, 1, 16, 32, 16, 32, 32, 32, 256};
+        const int c = compression.empty() ? 0 : uint8_t(compression[0]);
+        const long long lines = c < 10 ? kLines[c] : 256;
+        chunks = (height + lines - 1) / lines;
+        chunkWidth = width;
+        chunkLines = std::min(lines, height);
+      }
+    }
+    if (!chunkCount.empty()) chunks = std::max<long long>(chunks, int32At(chunkCount, 0));
+    if (chunks < 0) bad("a negative chunk count");
+    if (double(chunkWidth) * double(chunkLines) * double(pixelBytes) > 2147483647.0)
+      bad("one chunk of its " + std::to_string(width) + "x" + std::to_string(height) + " pixels would decode to more than 2 GB");
+    tableBytes += 8 * chunks;
+    if (tableBytes > fileSize)
+      bad("its header declares " + std::to_string(chunks) + " chunks, whose offset table alone is longer than the file (" +
+          std::to_string(fileSize) + " bytes)");
+    if (!multiPart) break;
+  }
+}
+
 struct ChannelRef {
   int part = -1;
   std::string name;  // the name inside that part
@@ -47,8 +223,10 @@ struct ChannelRef {
 class ExrFile {
  public:
   explicit ExrFile(std::string path) : path_(std::move(path)) {
-    guarded(path_, "not a readable OpenEXR file",
-            [&] { file_ = std::make_unique<Imf::MultiPartInputFile>(path_.c_str()); });
+    guarded(path_, "not a readable OpenEXR file", [&] {
+      checkHeaderSizes(path_);
+      file_ = std::make_unique<Imf::MultiPartInputFile>(path_.c_str());
+    });
   }
 
   const std::string& path() const { return path_; }
@@ -87,11 +265,21 @@ class ExrFile {
  private:
   ChannelRef ref(int part, const std::string& name) const {
     const Imf::Header& header = file_->header(part);
+    if (header.hasType() && Imf::isDeepData(header.type()))
+      throw Error(ErrorCode::InvalidInput,
+                  path_ + ": channel '" + name + "' is deep data (" + header.type() + "), which is not supported");
     const Imf::Channel& channel = *header.channels().findChannel(name);
     if (channel.xSampling != 1 || channel.ySampling != 1)
       throw Error(ErrorCode::InvalidInput, path_ + ": channel '" + name + "' is subsampled, which is not supported");
     const Imath::Box2i& window = header.dataWindow();
-    return {part, name, window.max.x - window.min.x + 1, window.max.y - window.min.y + 1};
+    // In 64 bits: a hostile window (min -2^31, max 2^31 - 1) overflows int.
+    const long long width = static_cast<long long>(window.max.x) - window.min.x + 1;
+    const long long height = static_cast<long long>(window.max.y) - window.min.y + 1;
+    if (width <= 0 || height <= 0 || width > INT_MAX || height > INT_MAX)
+      throw Error(ErrorCode::InvalidInput, path_ + ": data window (" + std::to_string(window.min.x) + ", " +
+                                               std::to_string(window.min.y) + ") - (" + std::to_string(window.max.x) +
+                                               ", " + std::to_string(window.max.y) + ") is empty or too large");
+    return {part, name, int(width), int(height)};
   }
 
   std::string path_;
@@ -182,6 +370,7 @@ GBuffer loadGBuffer(const GBufferSource& source) {
   }
 
   const Request& first = requests.front();
+  checkFrameSize(first.file->path(), first.ref.width, first.ref.height, requests.size());
   guarded(first.file->path(), "cannot allocate the G-buffer", [&] {
     for (const Pass& pass : passes) *pass.image = Image(first.ref.width, first.ref.height, pass.channels);
   });

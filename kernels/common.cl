@@ -6,6 +6,12 @@
 
 #define SSRCL_NO_SURFACE FLT_MAX
 
+// Test hook for the kernel-build error path: building with -DSSRCL_TEST_BREAK_BUILD (through
+// SSRCL_KERNEL_BUILD_OPTIONS) must fail with this text in the build log.
+#ifdef SSRCL_TEST_BREAK_BUILD
+#error "SSRCL_TEST_BREAK_BUILD is defined: this build fails on purpose"
+#endif
+
 // One HZB level: offset into the packed mip buffer and its size.
 typedef struct {
   int offset;
@@ -42,13 +48,28 @@ inline float hzb_fetch(__global const float* hzb, __global const HzbLevel* level
   return hzb[l.offset + cell.y * l.width + cell.x];
 }
 
+// The viewing line through NDC (x, y) as a point on it and a step along it (eye -> scene) that
+// grows planar depth by exactly 1: the point at depth D is origin + (D + origin.z) * step.
+// Built from two homogeneous points, inv_proj * (x, y, 0, 1) and the centre of projection
+// inv_proj * (0, 0, 1, 0) (a direction at infinity for orthographic cameras), which are finite for
+// every depth layout; NDC z = -1 or 0 themselves can lie at infinity with reversed Z or an
+// infinite far plane. The origin is the eye for perspective cameras, so points keep their
+// relative precision at any depth.
+inline void view_line(float16 inv_proj, float2 ndc, float3* origin, float3* step) {
+  float4 a = mat_mul(inv_proj, (float4)(ndc, 0.0f, 1.0f));
+  float4 e = (float4)(inv_proj.s2, inv_proj.s6, inv_proj.sa, inv_proj.se);
+  float3 v = a.xyz * e.w - e.xyz * a.w;
+  *step = v / -v.z;
+  *origin = e.w != 0.0f ? e.xyz / e.w : a.xyz / a.w;
+}
+
 // View-space surface point of pixel `pix` at planar depth `depth`, and the unit viewing direction
 // (eye -> point); valid for perspective and orthographic cameras alike.
 inline float3 pixel_view_point(float16 inv_proj, int2 size, int2 pix, float depth, float3* view_dir) {
-  float2 ndc = pixel_to_ndc(convert_float2(pix) + 0.5f, size);
-  float3 a = unproject(inv_proj, ndc, -1.0f), b = unproject(inv_proj, ndc, 0.0f);
-  *view_dir = normalize(b - a);
-  return a + (b - a) * ((-depth - a.z) / (b.z - a.z));
+  float3 origin, step;
+  view_line(inv_proj, pixel_to_ndc(convert_float2(pix) + 0.5f, size), &origin, &step);
+  *view_dir = normalize(step);
+  return origin + (depth + origin.z) * step;
 }
 
 // Confidence of a hit at screen position s: fades to 0 over `edge_fade` of the smaller screen side.
@@ -61,10 +82,10 @@ inline float edge_confidence(float2 s, int2 size, float edge_fade) {
 // Planar depth where the viewing line through screen point `pixel` meets the plane through p with
 // normal n, or a negative value where that line runs parallel to it or meets it behind the eye.
 inline float plane_depth_at(float16 inv_proj, int2 size, float2 pixel, float3 p, float3 n) {
-  float2 ndc = pixel_to_ndc(pixel, size);
-  float3 a = unproject(inv_proj, ndc, -1.0f), b = unproject(inv_proj, ndc, 0.0f);
-  float denom = dot(b - a, n);
+  float3 origin, step;
+  view_line(inv_proj, pixel_to_ndc(pixel, size), &origin, &step);
+  float denom = dot(step, n);
   if (fabs(denom) < 1e-20f) return -1.0f;
-  float lambda = dot(p - a, n) / denom;
-  return lambda >= 0.0f ? -(a.z + lambda * (b.z - a.z)) : -1.0f;
+  float depth = dot(p - origin, n) / denom - origin.z;
+  return depth > 0.0f && isfinite(depth) ? depth : -1.0f;
 }

@@ -13,6 +13,9 @@
 // in later stages cannot overflow float.
 #define SSRCL_MAX_RADIANCE 1e20f
 
+// Depth at and beyond which a pixel is background whatever the far plane (Cycles writes 1e10).
+#define SSRCL_BACKGROUND_DEPTH 1e10f
+
 inline float sanitize_radiance(float v) {
   return isnan(v) ? 0.0f : clamp(v, 0.0f, SSRCL_MAX_RADIANCE);
 }
@@ -35,7 +38,11 @@ __kernel void setup(int2 size, float near_plane, float far_plane, float16 normal
   bool traced = false;
   if (inside) {
     float d = depth_in[i];
-    bool surface = isfinite(d) && d >= near_plane && d <= far_plane;
+    // Cycles' background depth (1e10) means no surface even under an infinite far plane.
+    bool surface = isfinite(d) && d >= near_plane && d <= far_plane && d < SSRCL_BACKGROUND_DEPTH;
+    float3 view_dir;
+    float3 p = pixel_view_point(inv_proj, size, (int2)(x, y), d, &view_dir);
+    surface = surface && all(isfinite(p));
 
     // Colour carries surface coverage in w (premultiplied), so prefiltered lookups average
     // surfaces only: rays never hit the sky, and its colour must not bleed into hits.
@@ -43,17 +50,20 @@ __kernel void setup(int2 size, float near_plane, float far_plane, float16 normal
     color_out[i] = surface ? (float4)(sanitize_radiance(c[0]), sanitize_radiance(c[1]), sanitize_radiance(c[2]), 1.0f)
                            : (float4)(0.0f);
 
+    // Normals need not be unit length: scaled to their largest component first, so that neither
+    // huge (length overflows) nor denormal ones (length underflows) are lost. Zero or non-finite
+    // normals leave the pixel without a reflection (it still occludes, facing the camera).
     float3 nw = vload3(i, normal_in);
-    float3 nv = mat3_mul(normal_matrix, nw);
+    float scale = fmax(fabs(nw.x), fmax(fabs(nw.y), fabs(nw.z)));
+    bool normal_ok = isfinite(scale) && scale > 0.0f;
+    float3 nv = mat3_mul(normal_matrix, normal_ok ? nw / scale : (float3)(0.0f));
     float len = length(nv);
-    bool normal_ok = isfinite(len) && len > 1e-20f;
+    normal_ok = normal_ok && isfinite(len) && len > 1e-20f;
     nv = normal_ok ? nv / len : (float3)(0.0f, 0.0f, 1.0f);
 
     float r = constant_roughness >= 0.0f ? constant_roughness : roughness_in[i];
     r = isnan(r) ? 1.0f : clamp(r, 0.0f, 1.0f);
 
-    float3 view_dir;
-    float3 p = pixel_view_point(inv_proj, size, (int2)(x, y), d, &view_dir);
     float nearest = d;
     if (surface && normal_ok) {
       for (int corner = 0; corner < 4; ++corner) {
@@ -69,7 +79,8 @@ __kernel void setup(int2 size, float near_plane, float far_plane, float16 normal
     normal_out[i] = (float4)(nv, r);
     // Ray counts: 0 no reflection (sky, too rough), 1 mirror-like, -1 glossy but resolved from
     // its neighbours' rays only (strided tracing), else samples_per_pixel.
-    bool reflects = surface && normal_ok && r <= max_roughness;
+    // A normal facing away from the viewer (seen from behind) defines no reflection.
+    bool reflects = surface && normal_ok && r <= max_roughness && dot(view_dir, nv) < 0.0f;
     bool strided_out = (x % trace_stride) != 0 || (y % trace_stride) != 0;
     pixel_rays[i] = !reflects ? 0 : r <= mirror_roughness ? 1 : strided_out ? -1 : samples_per_pixel;
     traced = pixel_rays[i] > 0;
