@@ -375,10 +375,27 @@ struct Agreement {
 // renders the G-buffer, `camera` is what the pipeline gets; they differ only in depth layout).
 // Visible reflections must land within a pixel of the exact hit (A = 1, edge fade off), rays
 // that find nothing on screen must report A = 0; every output must be sane.
+struct Truth {
+  AnalyticGBuffer g;
+  MirrorTruth truth;
+};
+
+Truth renderTruth(const Scene& scene, const Camera& camera) {
+  Truth t{renderGBuffer(scene, camera), {}};
+  t.truth = exactMirrorReflection(scene, camera, t.g);
+  return t;
+}
+
+Agreement agreeWithTruth(const Truth& t, const Camera& camera, Tracer tracer = Tracer::HiZ);
+
 Agreement agreeWithTruth(const Scene& scene, const Camera& truthCamera, const Camera& camera,
                          Tracer tracer = Tracer::HiZ) {
-  const AnalyticGBuffer g = renderGBuffer(scene, truthCamera);
-  const MirrorTruth truth = exactMirrorReflection(scene, truthCamera, g);
+  return agreeWithTruth(renderTruth(scene, truthCamera), camera, tracer);
+}
+
+Agreement agreeWithTruth(const Truth& rendered, const Camera& camera, Tracer tracer) {
+  const AnalyticGBuffer& g = rendered.g;
+  const MirrorTruth& truth = rendered.truth;
   Frame f = frameOf(g, camera);
   encodePixels(f);
   TraceSettings s = qualityPreset("medium");
@@ -740,40 +757,56 @@ Camera corridorCamera(int width, int height) {
   return c;
 }
 
-TEST(ExtremeGeometry, ResolutionsOnePixelStripsPrimesAnd8192) {
-  {  // 1x1: the only pixel's ray leaves the screen at once.
-    const Scene scene = makeScene("spheres_on_mirror");
-    const Camera camera = makeCamera(scene.view, 1, 1);
-    Frame f = frameOf(renderGBuffer(scene, camera), camera);
-    for (const auto& [name, settings] : variants()) {
-      const Result r = run(f, settings);
-      EXPECT_EQ(expectSane(r, name), 0);
-      EXPECT_EQ(r.rgba.at(0, 0, 3), 0.0f) << name;
-    }
+TEST(ExtremeResolutions, OnePixel) {
+  // 1x1: the only pixel's ray leaves the screen at once.
+  const Scene scene = makeScene("spheres_on_mirror");
+  const Camera camera = makeCamera(scene.view, 1, 1);
+  Frame f = frameOf(renderGBuffer(scene, camera), camera);
+  for (const auto& [name, settings] : variants()) {
+    const Result r = run(f, settings);
+    EXPECT_EQ(expectSane(r, name), 0);
+    EXPECT_EQ(r.rgba.at(0, 0, 3), 0.0f) << name;
   }
+}
+
+// Strips one pixel (or three) thick and up to 8192 long: pixel coordinates where float has
+// 1/1024 pixel left, and an HZB of 14 levels whose top cells span the strip.
+class ExtremeStrips : public ::testing::TestWithParam<std::pair<int, int>> {};
+
+TEST_P(ExtremeStrips, HitsLandOnTheRightPixel) {
+  const auto [w, h] = GetParam();
+  const std::string what = std::to_string(w) + "x" + std::to_string(h) + " corridor";
+  const Scene scene = corridor(w > h);
+  const Camera camera = corridorCamera(w, h);
+  const Truth truth = renderTruth(scene, camera);
+  expectAgreement(agreeWithTruth(truth, camera), what, size_t(std::max(w, h) / 4));
+  expectAgreement(agreeWithTruth(truth, camera, Tracer::DDA), what + " (DDA)", size_t(std::max(w, h) / 4));
+  const Frame f = frameOf(truth.g, camera);
+  for (const auto& [name, settings] : variants()) EXPECT_EQ(expectSane(run(f, settings), name), 0) << what;
+}
+
+INSTANTIATE_TEST_SUITE_P(Sizes, ExtremeStrips,
+                         ::testing::Values(std::pair{257, 1}, std::pair{1, 257}, std::pair{8192, 3},
+                                           std::pair{3, 8192}, std::pair{8191, 1}),
+                         [](const auto& info) {
+                           return std::to_string(info.param.first) + "x" + std::to_string(info.param.second);
+                         });
+
+// Odd primes. At 13x7 objects are a pixel or two wide and nearly every hit is at a silhouette:
+// only sane output is asserted there; at 101x53 a pixel is 5x wider than at 480x270, 90%.
+TEST(ExtremeResolutions, OddPrimes) {
   struct Size {
     int w, h;
   };
-  // Strips one pixel thick and 8192 long: pixel coordinates where float has 1/1024 pixel left.
-  for (Size s : {Size{257, 1}, Size{1, 257}, Size{8192, 3}, Size{3, 8192}, Size{8191, 1}}) {
-    const std::string what = std::to_string(s.w) + "x" + std::to_string(s.h) + " corridor";
-    const Scene scene = corridor(s.w > s.h);
-    const Camera camera = corridorCamera(s.w, s.h);
-    expectAgreement(agreeWithTruth(scene, camera, camera), what, size_t(std::max(s.w, s.h) / 4));
-    expectAgreement(agreeWithTruth(scene, camera, camera, Tracer::DDA), what + " (DDA)", size_t(std::max(s.w, s.h) / 4));
-    Frame f = frameOf(renderGBuffer(scene, camera), camera);
-    for (const auto& [name, settings] : variants()) EXPECT_EQ(expectSane(run(f, settings), name), 0) << what;
-  }
-  // Odd primes. At 13x7 objects are a pixel or two wide and nearly every hit is at a silhouette:
-  // only sane output is asserted there; at 101x53 a pixel is 5x wider than at 480x270, 90%.
   for (Size s : {Size{13, 7}, Size{101, 53}, Size{307, 173}}) {
     const std::string what = std::to_string(s.w) + "x" + std::to_string(s.h);
     for (const char* name : {"spheres_on_mirror", "mirror_wall"}) {
       const Scene scene = makeScene(name);
       const Camera camera = makeCamera(scene.view, s.w, s.h);
-      const Agreement a = agreeWithTruth(scene, camera, camera);
+      const Truth truth = renderTruth(scene, camera);
+      const Agreement a = agreeWithTruth(truth, camera);
       if (s.w > 13) expectAgreement(a, what + " " + name, 100, s.w < 200 ? 0.90 : kVisibleRate);
-      Frame f = frameOf(renderGBuffer(scene, camera), camera);
+      const Frame f = frameOf(truth.g, camera);
       for (const auto& [vname, settings] : variants()) EXPECT_EQ(expectSane(run(f, settings), vname), 0) << what;
     }
   }
