@@ -11,7 +11,8 @@
 namespace ssrcl::fuzz {
 
 inline std::string inputPath(const char* name) {
-  const char* dir = access("/dev/shm", W_OK) == 0 ? "/dev/shm" : (std::getenv("TMPDIR") ? std::getenv("TMPDIR") : "/tmp");
+  const char* dir =
+      access("/dev/shm", W_OK) == 0 ? "/dev/shm" : (std::getenv("TMPDIR") ? std::getenv("TMPDIR") : "/tmp");
   return std::string(dir) + "/ssrcl-fuzz-" + std::to_string(getpid()) + "-" + name;
 }
 

@@ -18,12 +18,15 @@ int main(int argc, char** argv) {
   const auto ch = [&](const std::string& name, float seed, Imf::PixelType type = Imf::FLOAT) {
     return ExrChannel{name, pattern(w, h, seed), type};
   };
-  const std::vector<ExrChannel> blender = {
-      ch("ViewLayer.Combined.R", 0, Imf::HALF), ch("ViewLayer.Combined.G", 1, Imf::HALF),
-      ch("ViewLayer.Combined.B", 2, Imf::HALF), ch("ViewLayer.Depth.Z", 3),
-      ch("ViewLayer.Normal.X", 4),           ch("ViewLayer.Normal.Y", 5),
-      ch("ViewLayer.Normal.Z", 6),           ch("ViewLayer.roughness.X", 7)};
-  const std::vector<ExrChannel> plain = {ch("R", 0), ch("G", 1), ch("B", 2), ch("Z", 3),
+  const std::vector<ExrChannel> blender = {ch("ViewLayer.Combined.R", 0, Imf::HALF),
+                                           ch("ViewLayer.Combined.G", 1, Imf::HALF),
+                                           ch("ViewLayer.Combined.B", 2, Imf::HALF),
+                                           ch("ViewLayer.Depth.Z", 3),
+                                           ch("ViewLayer.Normal.X", 4),
+                                           ch("ViewLayer.Normal.Y", 5),
+                                           ch("ViewLayer.Normal.Z", 6),
+                                           ch("ViewLayer.roughness.X", 7)};
+  const std::vector<ExrChannel> plain = {ch("R", 0),   ch("G", 1),   ch("B", 2),   ch("Z", 3),
                                          ch("N.X", 4), ch("N.Y", 5), ch("N.Z", 6), ch("roughness", 7, Imf::UINT)};
   ExrOptions o;
   writeExr(dir + "/gbuffer/blender-zip.exr", w, h, blender, o);

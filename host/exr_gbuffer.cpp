@@ -111,16 +111,36 @@ void checkHeaderSizes(const std::string& path) {
     return v;
   };
   const auto int32At = [](const std::string& v, size_t at) {
-    return v.size() >= at + 4 ? static_cast<int32_t>(uint32_t(uint8_t(v[at])) | uint32_t(uint8_t(v[at + 1])) << 8 |
-                                                     uint32_t(uint8_t(v[at + 2])) << 16 | uint32_t(uint8_t(v[at + 3])) << 24)
-                              : 0;
+    return v.size() >= at + 4
+               ? static_cast<int32_t>(uint32_t(uint8_t(v[at])) | uint32_t(uint8_t(v[at + 1])) << 8 |
+                                      uint32_t(uint8_t(v[at + 2])) << 16 | uint32_t(uint8_t(v[at + 3])) << 24)
+               : 0;
   };
   // Bytes OpenEXR 3.1 reads for each fixed-size attribute type, whatever the size field says.
-  static const std::map<std::string, int> kFixed = {
-      {"box2i", 16}, {"box2f", 16}, {"chromaticities", 32}, {"compression", 1}, {"deepImageState", 1},
-      {"double", 8}, {"envmap", 1}, {"float", 4}, {"int", 4}, {"keycode", 28}, {"lineOrder", 1}, {"m33f", 36},
-      {"m33d", 72}, {"m44f", 64}, {"m44d", 128}, {"rational", 8}, {"tiledesc", 9}, {"timecode", 8}, {"v2i", 8},
-      {"v2f", 8}, {"v2d", 16}, {"v3i", 12}, {"v3f", 12}, {"v3d", 24}};
+  static const std::map<std::string, int> kFixed = {{"box2i", 16},
+                                                    {"box2f", 16},
+                                                    {"chromaticities", 32},
+                                                    {"compression", 1},
+                                                    {"deepImageState", 1},
+                                                    {"double", 8},
+                                                    {"envmap", 1},
+                                                    {"float", 4},
+                                                    {"int", 4},
+                                                    {"keycode", 28},
+                                                    {"lineOrder", 1},
+                                                    {"m33f", 36},
+                                                    {"m33d", 72},
+                                                    {"m44f", 64},
+                                                    {"m44d", 128},
+                                                    {"rational", 8},
+                                                    {"tiledesc", 9},
+                                                    {"timecode", 8},
+                                                    {"v2i", 8},
+                                                    {"v2f", 8},
+                                                    {"v2d", 16},
+                                                    {"v3i", 12},
+                                                    {"v3f", 12},
+                                                    {"v3d", 24}};
 
   long long tableBytes = 0;
   for (int part = 0;; ++part) {
@@ -163,8 +183,10 @@ void checkHeaderSizes(const std::string& path) {
         }
       } else {  // string, floatvector, idmanifest and unknown (opaque) types: `size` bytes
         need(size, what);
-        if (name == "type" || name == "chunkCount") value = readBytes(size);
-        else in.seekg(size, std::ios::cur);
+        if (name == "type" || name == "chunkCount")
+          value = readBytes(size);
+        else
+          in.seekg(size, std::ios::cur);
       }
       if (name == "dataWindow") dataWindow = value;
       if (name == "tiles") tiles = value;
@@ -205,11 +227,12 @@ void checkHeaderSizes(const std::string& path) {
     if (!chunkCount.empty()) chunks = std::max<long long>(chunks, int32At(chunkCount, 0));
     if (chunks < 0) bad("a negative chunk count");
     if (double(chunkWidth) * double(chunkLines) * double(pixelBytes) > 2147483647.0)
-      bad("one chunk of its " + std::to_string(width) + "x" + std::to_string(height) + " pixels would decode to more than 2 GB");
+      bad("one chunk of its " + std::to_string(width) + "x" + std::to_string(height) +
+          " pixels would decode to more than 2 GB");
     tableBytes += 8 * chunks;
     if (tableBytes > fileSize)
-      bad("its header declares " + std::to_string(chunks) + " chunks, whose offset table alone is longer than the file (" +
-          std::to_string(fileSize) + " bytes)");
+      bad("its header declares " + std::to_string(chunks) +
+          " chunks, whose offset table alone is longer than the file (" + std::to_string(fileSize) + " bytes)");
     if (!multiPart) break;
   }
 }

@@ -77,7 +77,8 @@ RandomCase randomCase(unsigned seed) {
   }
   if (rng() % 3 == 0) {
     const double yaw = uni(-0.6, 0.6);
-    c.scene.primitives.push_back(box("wall", dvec3(uni(-6, -4), 2, uni(-2, 2)), dvec3(0.1, 2, 5), yaw * 57.3, Material{}));
+    c.scene.primitives.push_back(
+        box("wall", dvec3(uni(-6, -4), 2, uni(-2, 2)), dvec3(0.1, 2, 5), yaw * 57.3, Material{}));
   }
   const double azimuth = uni(0, 2 * 3.14159265), elevation = uni(0.08, 1.0), distance = uni(6, 14);
   ViewParams v;
@@ -87,8 +88,8 @@ RandomCase randomCase(unsigned seed) {
   v.fovYDegrees = uni(30, 80);
   v.nearPlane = logUni(0.01, 1.0);
   v.farPlane = logUni(50, 1e4);
-  c.camera = makeCamera(v, std::uniform_int_distribution<int>(96, 200)(rng),
-                        std::uniform_int_distribution<int>(64, 140)(rng));
+  c.camera =
+      makeCamera(v, std::uniform_int_distribution<int>(96, 200)(rng), std::uniform_int_distribution<int>(64, 140)(rng));
   // A quarter each: OpenGL perspective, orthographic, off-centre (shifted) perspective, and
   // perspective handed over as reversed-Z [0, 1] with an infinite far plane.
   const double aspect = double(c.camera.width) / c.camera.height, n = v.nearPlane;
@@ -203,9 +204,9 @@ TEST(Differential, OpenClTracersAgreeWithTheCpuReference) {
     const Tally& t = tallies[k];
     std::ostringstream examples;
     for (const std::string& e : t.examples) examples << "\n  " << e;
-    std::cout << pairs[k].name << ": " << t.agree << " of " << t.traced << " traced pixels agree ("
-              << 100.0 * t.rate() << "%), " << t.bothHit << " hit in both; " << t.untracedDark << " of "
-              << t.untraced << " untraced pixels dark" << examples.str() << "\n";
+    std::cout << pairs[k].name << ": " << t.agree << " of " << t.traced << " traced pixels agree (" << 100.0 * t.rate()
+              << "%), " << t.bothHit << " hit in both; " << t.untracedDark << " of " << t.untraced
+              << " untraced pixels dark" << examples.str() << "\n";
     RecordProperty(std::string("agreement ") + pairs[k].name, std::to_string(t.rate()));
     EXPECT_GE(t.rate(), pairs[k].floor) << pairs[k].name << examples.str();
     // Pixels the reference gives no ray (sky, facing away) must get nothing from the kernels.

@@ -20,11 +20,11 @@
 #include <glm/glm.hpp>
 #include <iostream>
 #include <iterator>
-#include <tuple>
 #include <limits>
 #include <random>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "device_impl.hpp"
@@ -85,8 +85,12 @@ std::vector<std::pair<std::string, TraceSettings>> variants() {
   reference.samplesPerPixel = 4;
   TraceSettings high = qualityPreset("high");
   high.samplesPerPixel = 4;
-  return {{"mirror", mirror},   {"mirror-dda", mirrorDda},          {"draft", qualityPreset("draft")},
-          {"medium", qualityPreset("medium")}, {"high(4 spp)", high}, {"reference(4 spp)", reference}};
+  return {{"mirror", mirror},
+          {"mirror-dda", mirrorDda},
+          {"draft", qualityPreset("draft")},
+          {"medium", qualityPreset("medium")},
+          {"high(4 spp)", high},
+          {"reference(4 spp)", reference}};
 }
 
 // Finite everywhere, A in [0, 1], RGB >= 0 (premultiplied radiance), distance >= 0, and nothing
@@ -155,7 +159,7 @@ TEST(ExtremeValues, RoughnessReadsAsClampedWithNaNAsOne) {
   // (value, what it must be equivalent to): below the mirror threshold is the mirror, above 1 is
   // 1, negative is 0, NaN is 1 (documented in setup.cl).
   const std::pair<float, float> cases[] = {{1e-7f, 0.0f}, {FLT_MIN / 4, 0.0f}, {1.5f, 1.0f}, {kInf, 1.0f},
-                                           {-1.0f, 0.0f}, {-kInf, 0.0f},      {kNaN, 1.0f}};
+                                           {-1.0f, 0.0f}, {-kInf, 0.0f},       {kNaN, 1.0f}};
   for (const auto& c0 : cases) {
     const float value = c0.first, canonical = c0.second;  // named copies: lambdas capture them
     Frame f = base, c = base;
@@ -268,8 +272,8 @@ TEST(ExtremeValues, UnusableDepthIsSkyBitForBit) {
       base.camera.farPlane = INFINITY;
     }
     const float nearPlane = float(base.camera.nearPlane);
-    std::vector<float> hostile = {0.0f,  -0.0f, -1.0f,          -FLT_MAX,        kNaN,    kInf, -kInf,
-                                  1e-40f, FLT_MIN, nearPlane * 0.999f, 1e10f, 2e10f, FLT_MAX};
+    std::vector<float> hostile = {
+        0.0f, -0.0f, -1.0f, -FLT_MAX, kNaN, kInf, -kInf, 1e-40f, FLT_MIN, nearPlane * 0.999f, 1e10f, 2e10f, FLT_MAX};
     if (!infiniteFar) hostile.push_back(float(base.camera.farPlane) * 1.0001f);
     for (float value : hostile) {
       Frame f = base, sky = base;
@@ -293,8 +297,8 @@ TEST(ExtremeValues, UnusableDepthIsSkyBitForBit) {
 
 TEST(ExtremeValues, ColourRuleNaNZeroNegativeZeroClampAt1e20) {
   const Frame base = baseFrame();
-  const std::pair<float, float> cases[] = {{kNaN, 0.0f},     {-5.0f, 0.0f},  {-kInf, 0.0f}, {-0.0f, 0.0f},
-                                           {kInf, 1e20f},    {1e30f, 1e20f}, {FLT_MAX, 1e20f}};
+  const std::pair<float, float> cases[] = {{kNaN, 0.0f},  {-5.0f, 0.0f},  {-kInf, 0.0f},   {-0.0f, 0.0f},
+                                           {kInf, 1e20f}, {1e30f, 1e20f}, {FLT_MAX, 1e20f}};
   for (const auto& c0 : cases) {
     const float value = c0.first, canonical = c0.second;  // named copies: lambdas capture them
     Frame f = base, c = base;
@@ -323,8 +327,8 @@ TEST(ExtremeValues, ColourRuleNaNZeroNegativeZeroClampAt1e20) {
 
 // Every channel of many pixels replaced by something hostile at once.
 TEST(ExtremeValues, RandomHostileGBuffersStaySane) {
-  const float values[] = {kNaN,   kInf,    -kInf,  0.0f,    -0.0f,   1e-40f,  -1e-40f, FLT_MAX,
-                          -FLT_MAX, 1e30f, -1e30f, 1e-30f, 1e10f,   -1.0f,   0.5f,    1.0f};
+  const float values[] = {kNaN,     kInf,  -kInf,  0.0f,   -0.0f, 1e-40f, -1e-40f, FLT_MAX,
+                          -FLT_MAX, 1e30f, -1e30f, 1e-30f, 1e10f, -1.0f,  0.5f,    1.0f};
   const Frame base = baseFrame(48, 32);
   for (unsigned seed = 1; seed <= 4; ++seed) {
     std::mt19937 rng(seed);
@@ -336,13 +340,16 @@ TEST(ExtremeValues, RandomHostileGBuffersStaySane) {
         if (!hostile(rng)) continue;
         const int c = channel(rng);
         const float v = values[pick(rng)];
-        if (c < 3) f.color.at(x, y, c) = v;
-        else if (c < 6) f.normal.at(x, y, c - 3) = v;
-        else if (c == 6) f.depth.at(x, y, 0) = v;
-        else f.roughness.at(x, y, 0) = v;
+        if (c < 3)
+          f.color.at(x, y, c) = v;
+        else if (c < 6)
+          f.normal.at(x, y, c - 3) = v;
+        else if (c == 6)
+          f.depth.at(x, y, 0) = v;
+        else
+          f.roughness.at(x, y, 0) = v;
       }
-    for (const auto& [name, settings] : variants())
-      EXPECT_EQ(expectSane(run(f, settings), name), 0) << "seed " << seed;
+    for (const auto& [name, settings] : variants()) EXPECT_EQ(expectSane(run(f, settings), name), 0) << "seed " << seed;
   }
 }
 
@@ -597,8 +604,8 @@ const Layout kLayouts[] = {
     {"GL", true, [](double n, double f) { return -(f + n) / (f - n); },
      [](double n, double f) { return -2 * f * n / (f - n); }, false},
     {"GL infinite", true, [](double, double) { return -1.0; }, [](double n, double) { return -2 * n; }, true},
-    {"[0,1]", true, [](double n, double f) { return -f / (f - n); }, [](double n, double f) { return -f * n / (f - n); },
-     false},
+    {"[0,1]", true, [](double n, double f) { return -f / (f - n); },
+     [](double n, double f) { return -f * n / (f - n); }, false},
     {"[0,1] infinite", true, [](double, double) { return -1.0; }, [](double n, double) { return -n; }, true},
     {"[0,1] reversed", true, [](double n, double f) { return n / (f - n); },
      [](double n, double f) { return f * n / (f - n); }, false},
@@ -786,8 +793,8 @@ TEST_P(ExtremeStrips, HitsLandOnTheRightPixel) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Sizes, ExtremeStrips,
-                         ::testing::Values(std::pair{257, 1}, std::pair{1, 257}, std::pair{8192, 3},
-                                           std::pair{3, 8192}, std::pair{8191, 1}),
+                         ::testing::Values(std::pair{257, 1}, std::pair{1, 257}, std::pair{8192, 3}, std::pair{3, 8192},
+                                           std::pair{8191, 1}),
                          [](const auto& info) {
                            return std::to_string(info.param.first) + "x" + std::to_string(info.param.second);
                          });
@@ -812,23 +819,30 @@ TEST(ExtremeResolutions, OddPrimes) {
   }
 }
 
-// 8192x8192: buffers of ~13 GB, so only on devices with the memory (GPUs); everything is too rough
-// to trace except a band of rows through the middle, which must hit the right pixels.
-TEST(ExtremeGeometry, Full8192Frame) {
+// 8192x8192: about 13 GB of device buffers and 3.5 GB on the host, so it runs only on devices
+// with 16 GiB (GPUs), or where SSRCL_TEST_HUGE is set (a CPU device with the memory). Everything
+// is too rough to trace but a band of rows through the middle, whose hits must land on the
+// right pixels.
+TEST(ExtremeResolutions, Full8192Frame) {
   const unsigned long long needed = 16ull << 30;
-  const auto maxAlloc = device().impl().device.getInfo<CL_DEVICE_MAX_MEM_ALLOC_SIZE>();
-  if (device().info().globalMemory < needed || maxAlloc < (1ull << 30))
+  if (device().info().globalMemory < needed && !std::getenv("SSRCL_TEST_HUGE"))
     GTEST_SKIP() << "device '" << device().info().name << "' has " << (device().info().globalMemory >> 20)
-                 << " MiB; an 8192x8192 frame needs about 16 GiB";
+                 << " MiB; an 8192x8192 frame needs about 16 GiB (SSRCL_TEST_HUGE=1 runs it anyway)";
   constexpr int kSize = 8192, kBand0 = 4090, kBand1 = 4102;
   const Scene scene = corridor(true);
   const Camera camera = corridorCamera(kSize, kSize);
   Frame f{camera, Image(kSize, kSize, 3), Image(kSize, kSize, 1), Image(kSize, kSize, 3), Image(kSize, kSize, 1)};
   encodePixels(f);
   std::vector<MirrorSample> truth(size_t(kSize) * (kBand1 - kBand0));
+  // primaryRay() inverts the matrix per call: done once here for 67 million rays.
+  const glm::dmat4 inv = glm::inverse(camera.projection * camera.view);
   for (int y = 0; y < kSize; ++y)
     for (int x = 0; x < kSize; ++x) {
-      const Ray ray = primaryRay(camera, x + 0.5, y + 0.5);
+      const glm::dvec2 ndc(2.0 * (x + 0.5) / kSize - 1.0, 1.0 - 2.0 * (y + 0.5) / kSize);
+      const glm::dvec4 a = inv * glm::dvec4(ndc, -1.0, 1.0), b = inv * glm::dvec4(ndc, 0.0, 1.0);
+      Ray ray;
+      ray.origin = dvec3(a) / a.w;
+      ray.direction = glm::normalize(dvec3(b) / b.w - ray.origin);
       const Hit hit = intersect(scene, ray);
       f.depth.at(x, y, 0) = hit ? float(planarDepth(camera, hit.position)) : 1e10f;
       for (int c = 0; c < 3; ++c) f.normal.at(x, y, c) = hit ? float(hit.normal[c]) : 0.0f;
@@ -839,8 +853,9 @@ TEST(ExtremeGeometry, Full8192Frame) {
   TraceSettings s = qualityPreset("medium");
   s.maxRoughness = 0.5f;
   s.edgeFade = 0.0f;
-  s.maxIterations = 1 << 16;
   const Result r = run(f, s);
+  EXPECT_GT(r.times.tracedPixels, 0);
+  EXPECT_LE(r.times.tracedPixels, (kBand1 - kBand0) * kSize);  // the band only: the rest is too rough
   Agreement a;
   for (int y = kBand0; y < kBand1; ++y)
     for (int x = 0; x < kSize; ++x) {
@@ -851,7 +866,9 @@ TEST(ExtremeGeometry, Full8192Frame) {
       a.visibleOk += alpha > 0.999f && std::abs(int(r.rgba.at(x, y, 0) / alpha) - int(t.screen.x)) <= 1 &&
                      std::abs(int(r.rgba.at(x, y, 1) / alpha) - int(t.screen.y)) <= 1;
     }
-  expectAgreement(a, "8192x8192 band", 20000);
+  std::cout << "8192x8192 band: " << a.visibleOk << " of " << a.visible << " visible reflections on the right pixel\n";
+  EXPECT_GE(a.visible, 50000u);
+  EXPECT_GE(double(a.visibleOk), kVisibleRate * double(a.visible));
 }
 
 }  // namespace

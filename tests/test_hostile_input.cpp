@@ -8,8 +8,6 @@
 // to end with the output untouched, headers declaring absurd sizes, deep and subsampled data,
 // corrupted pixel data, hostile camera JSON, no OpenCL platform, a kernel build failure with its
 // log, and device memory limits.
-#include <gtest/gtest.h>
-
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfDeepFrameBuffer.h>
 #include <OpenEXR/ImfDeepScanLineOutputFile.h>
@@ -17,6 +15,7 @@
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfOutputFile.h>
 #include <OpenEXR/ImfPartType.h>
+#include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -107,7 +106,8 @@ class Hostile : public ::testing::Test {
     ASSERT_NE(at, std::string::npos) << r.output;
     const std::string first = r.output.substr(at + (at ? 1 : 0), r.output.find('\n', at + 1) - at);
     if (!file.empty()) EXPECT_NE(first.find(file), std::string::npos) << "file not named: " << r.output;
-    for (const std::string& n : needles) EXPECT_NE(r.output.find(n), std::string::npos) << "'" << n << "' in " << r.output;
+    for (const std::string& n : needles)
+      EXPECT_NE(r.output.find(n), std::string::npos) << "'" << n << "' in " << r.output;
     EXPECT_EQ(readBytes(out), kEarlier) << "the earlier output was touched";
     for (const auto& e : fs::directory_iterator(dir.path()))
       EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << "left behind: " << e.path();
@@ -235,8 +235,8 @@ TEST_F(Hostile, DeepDataIsRefusedByName) {
     std::vector<std::vector<float>> values = {};
     for (const ExrChannel& c : good.channels) values.push_back(c.values);
     Imf::DeepFrameBuffer fb;
-    fb.insertSampleCountSlice(Imf::Slice(Imf::UINT, reinterpret_cast<char*>(counts.data()), sizeof(unsigned),
-                                         sizeof(unsigned) * kW));
+    fb.insertSampleCountSlice(
+        Imf::Slice(Imf::UINT, reinterpret_cast<char*>(counts.data()), sizeof(unsigned), sizeof(unsigned) * kW));
     for (size_t k = 0; k < good.channels.size(); ++k) {
       for (size_t i = 0; i < counts.size(); ++i) pointers[k][i] = &values[k][i];
       fb.insert(good.channels[k].name, Imf::DeepSlice(Imf::FLOAT, reinterpret_cast<char*>(pointers[k].data()),
@@ -256,9 +256,9 @@ TEST_F(Hostile, SubsampledChannelIsRefusedByName) {
     const bool sub = c.name == "ViewLayer.roughness.X";
     header.channels().insert(c.name, Imf::Channel(Imf::FLOAT, sub ? 2 : 1, sub ? 2 : 1));
     float* data = const_cast<float*>(sub ? half.data() : c.values.data());
-    fb.insert(c.name, sub ? Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(data), sizeof(float),
-                                       sizeof(float) * (kW / 2), 2, 2)
-                          : Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(data), sizeof(float), sizeof(float) * kW));
+    fb.insert(c.name,
+              sub ? Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(data), sizeof(float), sizeof(float) * (kW / 2), 2, 2)
+                  : Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(data), sizeof(float), sizeof(float) * kW));
   }
   {
     Imf::OutputFile file(shot.c_str(), header);
@@ -314,10 +314,12 @@ TEST_F(Hostile, CameraJsonThatCannotBeUsed) {
       {"width as text", with("width", "40"), {"'width'"}},
       {"width 2^31 - 1", with("width", 2147483647), {"2147483647x30", "2^30"}},
       {"height too large", with("height", 4e9), {"'height'"}},
-      {"overflowing number", valid.dump().replace(valid.dump().find("\"height\""), 0, "\"x\":1e999,"),
+      {"overflowing number",
+       valid.dump().replace(valid.dump().find("\"height\""), 0, "\"x\":1e999,"),
        {"invalid JSON", "1e999"}},
       {"NaN literal", valid.dump().replace(valid.dump().find('}'), 0, ",\"near\":NaN"), {"invalid JSON"}},
-      {"singular projection", with("projection", {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 0, 0}, {0, 0, -1, 0}}),
+      {"singular projection",
+       with("projection", {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 0, 0}, {0, 0, -1, 0}}),
        {"projection"}},
       {"oblique projection without planes", oblique.dump(), {"'projection'", "oblique", "'near' and 'far'"}},
       {"near beyond far", with("near", 2000.0), {"near"}},

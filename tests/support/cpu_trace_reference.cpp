@@ -31,8 +31,8 @@ dvec3 pointAtDepth(const Camera& c, dvec2 s, double d) {
 }
 
 struct Segment {
-  dvec2 s0, ds;     // screen position s0 + t ds, t in [0, 1] the on-screen part
-  dvec4 q0, dq;     // (X / w, 1 / w) interpolated linearly in t
+  dvec2 s0, ds;  // screen position s0 + t ds, t in [0, 1] the on-screen part
+  dvec4 q0, dq;  // (X / w, 1 / w) interpolated linearly in t
   dvec3 at(double t) const {
     const dvec4 q = q0 + t * dq;
     return dvec3(q) / q.w;

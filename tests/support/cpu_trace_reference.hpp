@@ -40,7 +40,7 @@ struct CpuTraceOptions {
 struct CpuRay {
   bool traced = false;  // the pixel has a surface and a usable normal facing the viewer
   bool hit = false;
-  int hitX = -1, hitY = -1;  // the pixel whose plane was hit
+  int hitX = -1, hitY = -1;                // the pixel whose plane was hit
   glm::dvec3 origin{0.0}, direction{0.0};  // view space
   glm::dvec3 hitPoint{0.0};
   double distance = 0.0;  // |hitPoint - origin|
