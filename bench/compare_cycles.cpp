@@ -53,10 +53,7 @@ int main(int argc, char** argv) {
     const ssrcl::GBuffer& g = ref.gbuffer;
     ssrcl::Device device(ssrcl::DeviceType::Default);
     ssrcl::Pipeline pipeline(device);
-    pipeline.setImage("color", g.color);
-    pipeline.setImage("depth", g.depth);
-    pipeline.setImage("normal", g.normal);
-    pipeline.setImage("roughness", g.roughness);
+    pipeline.setGBuffer(g);
     pipeline.setCamera(ref.camera);
     pipeline.commit();
 

@@ -29,10 +29,7 @@ void runStage(benchmark::State& state, const char* stage, ssrcl::TraceSettings s
   static ssrcl::Device device(ssrcl::DeviceType::Default);
   const Frame& f = frame();
   ssrcl::Pipeline p(device);
-  p.setImage("color", f.gbuffer.color);
-  p.setImage("depth", f.gbuffer.depth);
-  p.setImage("normal", f.gbuffer.normal);
-  p.setImage("roughness", f.gbuffer.roughness);
+  p.setGBuffer(f.gbuffer);
   p.setCamera(f.camera);
   p.settings() = settings;
   p.commit();

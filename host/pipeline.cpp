@@ -105,6 +105,13 @@ void Pipeline::setImage(const std::string& name, const Image& image) {
   impl_->committed = false;
 }
 
+void Pipeline::setGBuffer(const GBuffer& gbuffer) {
+  setImage("color", gbuffer.color);
+  setImage("depth", gbuffer.depth);
+  setImage("normal", gbuffer.normal);
+  if (!gbuffer.roughness.empty()) setImage("roughness", gbuffer.roughness);
+}
+
 void Pipeline::setCamera(const Camera& camera) {
   impl_->camera = camera;
   impl_->hasCamera = true;

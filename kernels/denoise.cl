@@ -37,6 +37,8 @@ __kernel void denoise(int2 size, float mirror_roughness, __global const float4* 
       dist_weights += w * c.w;
     }
   }
-  out_rgba[i] = sum / weights;  // weights >= 1: the centre pixel always counts
+  float4 filtered = sum / weights;  // weights >= 1: the centre pixel always counts
+  // Where nothing was found the pass is 0: colour whose weights outlived A's underflow is not kept.
+  out_rgba[i] = filtered.w > 0.0f ? filtered : (float4)(0.0f);
   out_distance[i] = dist_weights > 0.0f ? dist_sum / dist_weights : 0.0f;
 }

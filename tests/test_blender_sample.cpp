@@ -33,10 +33,7 @@ TEST(BlenderSample, FloorReflectionsMatchCycles) {
 
   ssrcl::Device device = ssrcl::test::testDevice();
   ssrcl::Pipeline p(device);
-  p.setImage("color", g.color);
-  p.setImage("depth", g.depth);
-  p.setImage("normal", g.normal);
-  p.setImage("roughness", g.roughness);
+  p.setGBuffer(g);
   p.setCamera(ssrcl::loadCameraJson(std::string(SSRCL_SOURCE_DIR) + "/samples/blender/mirror/mirror.camera.json"));
   p.settings().edgeFade = 0.0f;
   p.commit();
@@ -86,10 +83,7 @@ TEST(BlenderSample, GlossyFloorMatchesCycles) {
   ASSERT_EQ(ref.groups.size(), 4u);  // the floor and its three stripes
   ssrcl::Device device = ssrcl::test::testDevice();
   ssrcl::Pipeline p(device);
-  p.setImage("color", ref.gbuffer.color);
-  p.setImage("depth", ref.gbuffer.depth);
-  p.setImage("normal", ref.gbuffer.normal);
-  p.setImage("roughness", ref.gbuffer.roughness);
+  p.setGBuffer(ref.gbuffer);
   p.setCamera(ref.camera);
   p.commit();
   auto run = [&](int spp) {

@@ -14,9 +14,9 @@
 #include <string>
 #include <vector>
 
+#include "scenes/analytic_scene.hpp"
 #include "ssrcl/device.hpp"
 #include "ssrcl/pipeline.hpp"
-#include "scenes/analytic_scene.hpp"
 #include "support/glossy_truth.hpp"
 #include "support/test_device.hpp"
 
@@ -286,10 +286,7 @@ ssrcl::Image runSsr(const GlossyCase& c, ssrcl::TraceSettings s) {
   s.edgeFade = 0;                              // the truth has no fade
   s.maxRoughness = kMaxRoughness;
   ssrcl::Pipeline p(device);
-  p.setImage("color", c.g.color);
-  p.setImage("depth", c.g.depth);
-  p.setImage("normal", c.g.normal);
-  p.setImage("roughness", c.g.roughness);
+  p.setGBuffer(c.g);
   p.setCamera(c.camera);
   p.settings() = s;
   p.commit();
@@ -493,8 +490,8 @@ TEST_P(GlossySsr, FastPathBiasAndError) {
   prefiltered.prefilter = true;
   const dvec3 tint = colourOfHits(c, runSsr(c, prefiltered)), tintRef = colourOfHits(c, runSsr(c, reference(64)));
   std::cout << "r " << c.roughness << " medium: " << describe(e) << "\n   4 spp, no reuse: " << describe(e4)
-            << "\n   1 spp, no reuse: " << describe(e1) << "\n   rgb / A - L: prefiltered " << tint.r << " " << tint.g << " "
-            << tint.b << ", reference 64 spp " << tintRef.r << " " << tintRef.g << " " << tintRef.b << "\n";
+            << "\n   1 spp, no reuse: " << describe(e1) << "\n   rgb / A - L: prefiltered " << tint.r << " " << tint.g
+            << " " << tint.b << ", reference 64 spp " << tintRef.r << " " << tintRef.g << " " << tintRef.b << "\n";
   record("medium", e);
   record("no_reuse_4spp", e4);
   record("no_reuse_1spp", e1);

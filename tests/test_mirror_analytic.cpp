@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
+#include "scenes/analytic_scene.hpp"
 #include "ssrcl/device.hpp"
 #include "ssrcl/pipeline.hpp"
-#include "scenes/analytic_scene.hpp"
 #include "support/test_device.hpp"
 
 namespace {
@@ -280,10 +280,7 @@ TEST_P(MirrorSsrTest, MatchesExactReflections) {
 
   ssrcl::Device device = ssrcl::test::testDevice();
   ssrcl::Pipeline p(device);
-  p.setImage("color", r.g.color);
-  p.setImage("depth", r.g.depth);
-  p.setImage("normal", r.g.normal);
-  p.setImage("roughness", r.g.roughness);
+  p.setGBuffer(r.g);
   p.setCamera(r.camera);
   p.settings().edgeFade = 0;  // the truth has no fade: a visible hit at the border is full strength
   p.commit();

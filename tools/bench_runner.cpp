@@ -8,10 +8,7 @@ namespace {
 
 Pipeline makePipeline(const Device& device, const BenchInput& input) {
   Pipeline p(device);
-  p.setImage("color", input.gbuffer.color);
-  p.setImage("depth", input.gbuffer.depth);
-  p.setImage("normal", input.gbuffer.normal);
-  p.setImage("roughness", input.gbuffer.roughness);
+  p.setGBuffer(input.gbuffer);
   p.setCamera(input.camera);
   return p;
 }

@@ -56,10 +56,7 @@ Camera loadCameraFor(const std::string& path, const GBuffer& g) {
 }
 
 void setFrame(Pipeline& pipeline, const GBuffer& g, const Camera& camera) {
-  pipeline.setImage("color", g.color);
-  pipeline.setImage("depth", g.depth);
-  pipeline.setImage("normal", g.normal);
-  if (!g.roughness.empty()) pipeline.setImage("roughness", g.roughness);
+  pipeline.setGBuffer(g);
   pipeline.setCamera(camera);
 }
 

@@ -11,7 +11,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   std::vector<std::pair<CLI::App*, ssrcl::cli::Action>> commands;
   for (auto add : {ssrcl::cli::addDevicesCommand, ssrcl::cli::addTraceCommand, ssrcl::cli::addBatchCommand,
-                    ssrcl::cli::addBenchCommand}) {
+                   ssrcl::cli::addBenchCommand}) {
     size_t before = app.get_subcommands({}).size();
     ssrcl::cli::Action action = add(app);
     commands.emplace_back(app.get_subcommands({})[before], std::move(action));

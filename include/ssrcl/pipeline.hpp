@@ -8,6 +8,7 @@
 #include "ssrcl/camera.hpp"
 #include "ssrcl/device.hpp"
 #include "ssrcl/image.hpp"
+#include "ssrcl/io.hpp"
 
 namespace ssrcl {
 
@@ -42,12 +43,12 @@ struct TraceSettings {
   float edgeFade = 0.05f;           // fraction of the screen's smaller side over which A fades out
   float constantRoughness = -1.0f;  // >= 0 overrides the roughness image
 
-  int samplesPerPixel = 4;     // rays per glossy pixel
-  uint32_t seed = 0;           // same inputs and seed, same output (on one device)
+  int samplesPerPixel = 4;  // rays per glossy pixel
+  uint32_t seed = 0;        // same inputs and seed, same output (on one device)
   RoughnessMapping roughnessMapping = RoughnessMapping::Squared;
   float mirrorRoughness = 0.02f;  // at or below: one deterministic mirror ray, no reuse
-  int reuseRadius = 2;         // resolve reuses rays of (2r+1)^2 neighbours (Stachowiak); 0 = own only
-  bool prefilter = false;      // rough hits read a color mip matched to the ray's cone footprint
+  int reuseRadius = 2;            // resolve reuses rays of (2r+1)^2 neighbours (Stachowiak); 0 = own only
+  bool prefilter = false;         // rough hits read a color mip matched to the ray's cone footprint
   Tracer tracer = Tracer::HiZ;
   float linearStepPixels = 0.5f;  // Tracer::Linear step along the ray's major screen axis
   bool denoise = false;           // edge-aware spatial filter after the resolve
@@ -76,7 +77,6 @@ struct StageTimes {
   // 0, 1, 2-3, 4-7, ... traversal iterations (bin b counts [2^(b-1), 2^b)).
   long long depthFetches = 0;
   std::vector<long long> iterationHistogram;
-
 };
 
 // The SSR pipeline, shaped like an OIDN filter:
@@ -99,6 +99,8 @@ class Pipeline {
 
   // The image is copied at commit/execute time; it must stay alive until then.
   void setImage(const std::string& name, const Image& image);
+  // All four passes of a loaded G-buffer (roughness only when it has one), same lifetime rule.
+  void setGBuffer(const GBuffer& gbuffer);
   void setCamera(const Camera& camera);
   TraceSettings& settings();
 

@@ -25,8 +25,8 @@ import bpy
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import export_camera  # noqa: E402  (needs the path tweak above)
 from scene_common import (HEIGHT, WIDTH, add_aov_output, add_object,  # noqa: E402
-                          build_world, configure_render, parse_outdir, render_and_write,
-                          reset_scene)
+                          build_camera, build_world, configure_render, parse_outdir,
+                          render_and_write, reset_scene)
 
 SAMPLES = 1024
 # Floor stripes, left to right in the image: roughness per band and the image columns where
@@ -128,21 +128,6 @@ def make_floor_material(scene):
     links.new(roughness, bsdf.inputs["Roughness"])
     add_aov_output(mat, roughness)
     return mat
-
-
-def build_camera(scene):
-    # Same camera as the mirror sample: 1.6 m high, ~12 degrees down, horizon at row ~67.
-    cam_data = bpy.data.cameras.new("Camera")
-    cam_data.lens = 24.0
-    cam_data.sensor_fit = 'AUTO'
-    cam_data.clip_start = 0.1
-    cam_data.clip_end = 1000.0  # beyond the floor edge, so the floor is never clipped
-    camera = bpy.data.objects.new("Camera", cam_data)
-    camera.location = (0.0, -8.0, 1.6)
-    camera.rotation_euler = (math.radians(78.0), 0.0, 0.0)
-    scene.collection.objects.link(camera)
-    scene.camera = camera
-    bpy.context.view_layer.update()  # the floor shader needs the camera's matrix_world
 
 
 def build_scene(scene):

@@ -14,7 +14,7 @@ import sys
 import bpy
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from scene_common import (add_object, build_world, configure_render,  # noqa: E402
+from scene_common import (add_object, build_camera, build_world, configure_render,  # noqa: E402
                           make_material, parse_outdir, render_and_write, reset_scene)
 
 SAMPLES = 64
@@ -57,17 +57,7 @@ def build_scene(scene):
     sun.rotation_euler = (math.radians(45), 0.0, math.radians(-35))
     scene.collection.objects.link(sun)
 
-    # Camera 1.6 m high looking ~12 degrees down: about three quarters floor, the rest sky.
-    cam_data = bpy.data.cameras.new("Camera")
-    cam_data.lens = 24.0
-    cam_data.sensor_fit = 'AUTO'
-    cam_data.clip_start = 0.1
-    cam_data.clip_end = 1000.0  # beyond the floor edge, so the floor is never clipped
-    camera = bpy.data.objects.new("Camera", cam_data)
-    camera.location = (0.0, -8.0, 1.6)
-    camera.rotation_euler = (math.radians(78.0), 0.0, 0.0)
-    scene.collection.objects.link(camera)
-    scene.camera = camera
+    build_camera(scene)
 
 
 def main():

@@ -5,6 +5,7 @@ Everything here is generic: empty the factory scene, materials that also write t
 to the "roughness" value AOV, primitive objects, the gradient sky, the render/EXR settings and
 the render-and-write step.
 """
+import math
 import os
 import sys
 import time
@@ -161,3 +162,18 @@ def render_and_write(scene, outdir, stem):
     export_camera.write_camera_json(json_path, scene)
     print("wrote", exr_path, "and", json_path)
     return exr_path, json_path
+
+
+def build_camera(scene):
+    """Both samples' camera: 1.6 m high looking ~12 degrees down, about three quarters floor."""
+    cam_data = bpy.data.cameras.new("Camera")
+    cam_data.lens = 24.0
+    cam_data.sensor_fit = 'AUTO'
+    cam_data.clip_start = 0.1
+    cam_data.clip_end = 1000.0  # beyond the floor edge, so the floor is never clipped
+    camera = bpy.data.objects.new("Camera", cam_data)
+    camera.location = (0.0, -8.0, 1.6)
+    camera.rotation_euler = (math.radians(78.0), 0.0, 0.0)
+    scene.collection.objects.link(camera)
+    scene.camera = camera
+    bpy.context.view_layer.update()  # the glossy floor's shader reads the camera's matrix_world
