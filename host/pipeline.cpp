@@ -16,6 +16,9 @@ constexpr std::array<const char*, 4> kInputNames = {"color", "depth", "normal", 
 // Mirror SSRCL_FETCH_SLOTS and the histogram in kernels/trace.cl.
 constexpr size_t kFetchSlots = 1024;
 constexpr size_t kHistogramBins = 33;
+// Mirror SSRCL_TILE in kernels/common.cl (the 2D work-group size) and ray_count in kernels/setup.cl.
+constexpr int kTile = 8;
+constexpr size_t kRayCounts = 4;
 
 // Mirrors HzbLevel in kernels/common.cl.
 struct HzbLevel {
@@ -67,12 +70,12 @@ struct Pipeline::Impl {
   TraceSettings settings;
 
   bool committed = false;
-  int width = 0, height = 0, colorChannels = 0;
+  int width = 0, height = 0, colorChannels = 0, tilesX = 0, tilesY = 0;
   std::vector<HzbLevel> levels;
 
   cl::Kernel setup, hzbReduce, colorReduce, trace, accumulate, finalize, denoise;
   cl::Buffer colorIn, depthIn, normalIn, roughnessIn;
-  cl::Buffer hzb, levelBuffer, positions, normals, colorPyramid, pixelRays, rayList, rayCount;
+  cl::Buffer hzb, levelBuffer, positions, normals, colorPyramid, pixelRays, rayList, tileList, rayCount;
   cl::Buffer accRadiance, accWeight, resolvedRgba, resolvedDistance, outRgba, outDistance;
   cl::Buffer rayHit, rayRadiance;  // one batch of ray records; sized on first use
   int batchCapacity = 0;
@@ -131,6 +134,8 @@ void Pipeline::Impl::validateSettings() const {
   if (std::isnan(s.constantRoughness)) throw Error(ErrorCode::InvalidArgument, "parameter roughness is NaN");
   if (s.samplesPerPixel < 1 || s.samplesPerPixel > 65536)
     throw Error(ErrorCode::InvalidArgument, "parameter spp must be in [1, 65536]");
+  if (!(s.fullRaysRoughness >= 0.0f && s.fullRaysRoughness <= 1.0f))
+    throw Error(ErrorCode::InvalidArgument, "parameter full-rays-roughness must be in [0, 1]");
   if (!(s.mirrorRoughness >= 0.0f && s.mirrorRoughness <= 1.0f))
     throw Error(ErrorCode::InvalidArgument, "parameter mirror-roughness must be in [0, 1]");
   if (s.reuseRadius < 0 || s.reuseRadius > 8)
@@ -181,6 +186,8 @@ void Pipeline::Impl::allocate() {
   height = camera.height;
   colorChannels = inputs.at("color")->channels;
   levels = hzbLevels(width, height);
+  tilesX = (width + kTile - 1) / kTile;
+  tilesY = (height + kTile - 1) / kTile;
   const size_t pixels = size_t(width) * height;
   const size_t hzbSize = size_t(levels.back().offset) + 1;
 
@@ -211,7 +218,8 @@ void Pipeline::Impl::allocate() {
   colorPyramid = buffer(CL_MEM_READ_WRITE, hzbSize * sizeof(cl_float4));
   pixelRays = buffer(CL_MEM_READ_WRITE, pixels * sizeof(cl_int));
   rayList = buffer(CL_MEM_READ_WRITE, pixels * sizeof(cl_int));
-  rayCount = buffer(CL_MEM_READ_WRITE, 2 * sizeof(cl_int));
+  tileList = buffer(CL_MEM_READ_WRITE, size_t(tilesX) * tilesY * sizeof(cl_int));
+  rayCount = buffer(CL_MEM_READ_WRITE, kRayCounts * sizeof(cl_int));
   accRadiance = buffer(CL_MEM_READ_WRITE, pixels * sizeof(cl_float4));
   accWeight = buffer(CL_MEM_READ_WRITE, pixels * sizeof(cl_float2));
   resolvedRgba = buffer(CL_MEM_READ_WRITE, pixels * sizeof(cl_float4));
@@ -255,8 +263,8 @@ void Pipeline::Impl::run() {
   cl::CommandQueue& q = queue();
   const size_t pixels = size_t(width) * height;
   const cl_int2 size = {{width, height}};
-  const cl::NDRange local2d(8, 8);
-  const cl::NDRange global2d(roundUp(width, 8), roundUp(height, 8));
+  const cl::NDRange local2d(kTile, kTile);
+  const cl::NDRange global2d(roundUp(width, kTile), roundUp(height, kTile));
   const TraceSettings& s = settings;
 
   // Normals go to view space with the inverse transpose, which stays right for scaled views.
@@ -274,7 +282,7 @@ void Pipeline::Impl::run() {
   const int reused = s.samplesPerPixel * (2 * s.reuseRadius + 1) * (2 * s.reuseRadius + 1);
   const float coneScale = s.prefilter ? 1.0f / std::sqrt(float(reused)) : 0.0f;
 
-  std::vector<cl::Event> uploads(5);
+  std::vector<cl::Event> uploads(4);
   const bool useRoughnessImage = s.constantRoughness < 0.0f;
   q.enqueueWriteBuffer(colorIn, CL_FALSE, 0, pixels * colorChannels * sizeof(float), inputs.at("color")->data.data(),
                        nullptr, &uploads[0]);
@@ -282,10 +290,7 @@ void Pipeline::Impl::run() {
                        &uploads[1]);
   q.enqueueWriteBuffer(normalIn, CL_FALSE, 0, pixels * 3 * sizeof(float), inputs.at("normal")->data.data(), nullptr,
                        &uploads[2]);
-  q.enqueueFillBuffer(rayCount, cl_int(0), 0, 2 * sizeof(cl_int), nullptr, &uploads[3]);
-  q.enqueueFillBuffer(accRadiance, cl_float4{{0, 0, 0, 0}}, 0, pixels * sizeof(cl_float4), nullptr, &uploads[4]);
-  uploads.emplace_back();
-  q.enqueueFillBuffer(accWeight, cl_float2{{0, 0}}, 0, pixels * sizeof(cl_float2), nullptr, &uploads.back());
+  q.enqueueFillBuffer(rayCount, cl_int(0), 0, kRayCounts * sizeof(cl_int), nullptr, &uploads[3]);
   if (s.countWork) {
     uploads.emplace_back();
     q.enqueueFillBuffer(workCounters, cl_int(0), 0, (kFetchSlots + kHistogramBins) * sizeof(cl_int), nullptr,
@@ -300,8 +305,8 @@ void Pipeline::Impl::run() {
   // HZB level 0 and colour pyramid level 0 start at offset 0 of their buffers.
   setArgs(setup, size, nearPlane, farPlane, normalMatrix16, invProj, colorIn, colorChannels, depthIn, normalIn,
           roughnessIn, useRoughnessImage ? -1.0f : s.constantRoughness, s.maxRoughness, s.mirrorRoughness,
-          cl_int(s.samplesPerPixel), cl_int(s.traceStride), positions, hzb, normals, colorPyramid, pixelRays, rayList,
-          rayCount);
+          cl_int(s.samplesPerPixel), s.fullRaysRoughness, cl_int(s.traceStride), cl_int(s.classifyWork), positions, hzb,
+          normals, colorPyramid, pixelRays, rayList, tileList, rayCount);
   cl::Event setupEvent;
   q.enqueueNDRangeKernel(setup, cl::NullRange, global2d, local2d, nullptr, &setupEvent);
 
@@ -314,34 +319,50 @@ void Pipeline::Impl::run() {
     q.enqueueNDRangeKernel(colorReduce, cl::NullRange, levelRange, local2d, nullptr, &colorEvents[l - 1]);
   }
 
-  cl_int counts[2] = {0, 0};  // listed pixels, rays
+  cl_int counts[kRayCounts] = {};  // listed pixels, rays, listed tiles, pixels with rays
   q.enqueueReadBuffer(rayCount, CL_TRUE, 0, sizeof(counts), counts);
-  const cl_int listed = counts[0];
+  const cl_int listed = counts[0], tiles = counts[2];
+  const cl::NDRange tileRange(size_t(tiles) * kTile, kTile);
 
   std::vector<cl::Event> traceEvents, resolveEvents;
-  for (int first = 0; listed > 0 && first < s.samplesPerPixel; first += batch) {
-    setArgs(trace, size, proj, invProj, nearPlane, farPlane, hzb, levelBuffer, static_cast<cl_int>(levels.size()),
-            positions, normals, rayList, listed, pixelRays, cl_int(batch), cl_int(first), seed, s.mirrorRoughness,
-            mapping, coneScale, tracer, s.linearStepPixels, s.thicknessRelative, s.maxIterations, s.edgeFade,
-            cl_int(s.countWork), workCounters, colorPyramid, rayHit, rayRadiance);
-    traceEvents.emplace_back();
-    q.enqueueNDRangeKernel(trace, cl::NullRange, cl::NDRange(roundUp(size_t(listed) * batch, 64)), cl::NDRange(64),
-                           nullptr, &traceEvents.back());
-    setArgs(accumulate, size, invProj, positions, normals, pixelRays, cl_int(batch), cl_int(first), s.mirrorRoughness,
-            mapping, cl_int(s.reuseRadius), rayHit, rayRadiance, accRadiance, accWeight);
+  for (int first = 0; tiles > 0 && first < s.samplesPerPixel; first += batch) {
+    // Tiles can hold reflecting pixels with no ray of their own (strided tracing): the resolve
+    // still runs, to start their sums.
+    if (listed > 0) {
+      setArgs(trace, size, proj, invProj, nearPlane, farPlane, hzb, levelBuffer, static_cast<cl_int>(levels.size()),
+              positions, normals, rayList, listed, pixelRays, cl_int(batch), cl_int(first), seed, s.mirrorRoughness,
+              mapping, coneScale, tracer, s.linearStepPixels, s.thicknessRelative, s.maxIterations, s.edgeFade,
+              cl_int(s.countWork), workCounters, colorPyramid, rayHit, rayRadiance);
+      traceEvents.emplace_back();
+      q.enqueueNDRangeKernel(trace, cl::NullRange, cl::NDRange(roundUp(size_t(listed) * batch, 64)), cl::NDRange(64),
+                             nullptr, &traceEvents.back());
+    }
+    setArgs(accumulate, size, tileList, cl_int(tilesX), invProj, positions, normals, pixelRays, cl_int(batch),
+            cl_int(first), s.mirrorRoughness, mapping, cl_int(s.reuseRadius), rayHit, rayRadiance, accRadiance,
+            accWeight);
     resolveEvents.emplace_back();
-    q.enqueueNDRangeKernel(accumulate, cl::NullRange, global2d, local2d, nullptr, &resolveEvents.back());
+    q.enqueueNDRangeKernel(accumulate, cl::NullRange, tileRange, local2d, nullptr, &resolveEvents.back());
   }
-  // With the filter on, the resolve writes to an intermediate the filter reads.
-  setArgs(finalize, size, accRadiance, accWeight, s.denoise ? resolvedRgba : outRgba,
-          s.denoise ? resolvedDistance : outDistance);
-  resolveEvents.emplace_back();
-  q.enqueueNDRangeKernel(finalize, cl::NullRange, global2d, local2d, nullptr, &resolveEvents.back());
+  // The resolve and filter write the listed tiles only; the rest of the pass is cleared.
+  if (tiles < tilesX * tilesY) {
+    resolveEvents.emplace_back();
+    q.enqueueFillBuffer(outRgba, cl_float4{{0, 0, 0, 0}}, 0, pixels * sizeof(cl_float4), nullptr,
+                        &resolveEvents.back());
+    resolveEvents.emplace_back();
+    q.enqueueFillBuffer(outDistance, 0.0f, 0, pixels * sizeof(float), nullptr, &resolveEvents.back());
+  }
   cl::Event denoiseEvent;
-  if (s.denoise) {
-    setArgs(denoise, size, s.mirrorRoughness, positions, normals, pixelRays, resolvedRgba, resolvedDistance, outRgba,
-            outDistance);
-    q.enqueueNDRangeKernel(denoise, cl::NullRange, global2d, local2d, nullptr, &denoiseEvent);
+  if (tiles > 0) {
+    // With the filter on, the resolve writes to an intermediate the filter reads.
+    setArgs(finalize, size, tileList, cl_int(tilesX), accRadiance, accWeight, s.denoise ? resolvedRgba : outRgba,
+            s.denoise ? resolvedDistance : outDistance);
+    resolveEvents.emplace_back();
+    q.enqueueNDRangeKernel(finalize, cl::NullRange, tileRange, local2d, nullptr, &resolveEvents.back());
+    if (s.denoise) {
+      setArgs(denoise, size, tileList, cl_int(tilesX), s.mirrorRoughness, positions, normals, pixelRays, resolvedRgba,
+              resolvedDistance, outRgba, outDistance);
+      q.enqueueNDRangeKernel(denoise, cl::NullRange, tileRange, local2d, nullptr, &denoiseEvent);
+    }
   }
 
   std::vector<cl::Event> downloads(2);
@@ -365,7 +386,8 @@ void Pipeline::Impl::run() {
     while (!times.iterationHistogram.empty() && times.iterationHistogram.back() == 0)
       times.iterationHistogram.pop_back();
   }
-  times.tracedPixels = listed;
+  times.tracedPixels = counts[3];
+  times.resolvedTiles = tiles;
   times.ms.clear();
   times.ms["upload"] = sum(uploads);
   times.ms["setup"] = eventMs(setupEvent);
@@ -373,7 +395,7 @@ void Pipeline::Impl::run() {
   times.ms["color_mips"] = sum(colorEvents);
   times.ms["trace"] = sum(traceEvents);
   times.ms["resolve"] = sum(resolveEvents);
-  times.ms["denoise"] = s.denoise ? eventMs(denoiseEvent) : 0.0;
+  times.ms["denoise"] = s.denoise && tiles > 0 ? eventMs(denoiseEvent) : 0.0;
   times.ms["download"] = sum(downloads);
 }
 

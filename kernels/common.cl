@@ -89,3 +89,13 @@ inline float plane_depth_at(float16 inv_proj, int2 size, float2 pixel, float3 p,
   float depth = dot(p - origin, n) / denom - origin.z;
   return depth > 0.0f && isfinite(depth) ? depth : -1.0f;
 }
+
+// Work is classified in 8x8 tiles (the 2D work-group size): kernels that run per tile take a
+// list of tile indices and a 1D range of work-groups, group g covering tile tile_list[g].
+#define SSRCL_TILE 8
+
+inline int2 tile_pixel(__global const int* tile_list, int tiles_x) {
+  int tile = tile_list[get_group_id(0)];
+  return (int2)((tile % tiles_x) * SSRCL_TILE + (int)get_local_id(0),
+                (tile / tiles_x) * SSRCL_TILE + (int)get_local_id(1));
+}

@@ -6,7 +6,8 @@
 //   rgb = sum(w * c * L) / sum(w),  A = sum(w * c) / sum(w),  distance = sum(w * c * d) / sum(w * c)
 // with c the hit's confidence (0 for a miss) - the lobe-weighted integrals TraceSettings
 // documents. Mirror pixels take their single ray as it is. The sums accumulate over batches in
-// acc_radiance = (sum w c L, sum w c) and acc_weight = (sum w, sum w c d).
+// acc_radiance = (sum w c L, sum w c) and acc_weight = (sum w, sum w c d), which the first batch
+// starts. Both kernels run over the listed tiles only; the host clears the output elsewhere.
 
 // GGX BRDF * cosine for local view o and light l (normal +Z), without Fresnel.
 inline float ggx_brdf_cos(float3 o, float3 l, float alpha) {
@@ -22,25 +23,32 @@ inline bool similar_surface(float depth_p, float3 n_p, float depth_q, float3 n_q
   return fabs(depth_q - depth_p) <= 0.05f * depth_p && dot(n_p, n_q) >= 0.9f;
 }
 
-__kernel void resolve_accumulate(int2 size, float16 inv_proj, __global const float4* positions,
+__kernel void resolve_accumulate(int2 size, __global const int* tile_list, int tiles_x, float16 inv_proj,
+                                 __global const float4* positions,
                                  __global const float4* normals, __global const int* pixel_rays,
                                  int batch_size, int first_sample, float mirror_roughness,
                                  int roughness_mapping, int reuse_radius, __global const float4* ray_hit,
                                  __global const float4* ray_radiance, __global float4* acc_radiance,
                                  __global float2* acc_weight) {
-  int x = get_global_id(0), y = get_global_id(1);
+  int2 xy = tile_pixel(tile_list, tiles_x);
+  int x = xy.x, y = xy.y;
   if (x >= size.x || y >= size.y) return;
   int i = y * size.x + x;
-  if (pixel_rays[i] == 0) return;  // sky, or too rough
+  bool first = first_sample == 0;
+  float4 radiance = first ? (float4)(0.0f) : acc_radiance[i];
+  float2 weight = first ? (float2)(0.0f) : acc_weight[i];
+  if (pixel_rays[i] == 0) {  // sky, or too rough
+    acc_radiance[i] = radiance;
+    acc_weight[i] = weight;
+    return;
+  }
 
   float4 nr = normals[i];
   float3 v;
   float3 p = pixel_view_point(inv_proj, size, (int2)(x, y), positions[i].w, &v);
-  float4 radiance = acc_radiance[i];
-  float2 weight = acc_weight[i];
 
   if (nr.w <= mirror_roughness) {
-    if (first_sample == 0) {  // its one ray is in the first batch
+    if (first) {  // its one ray is in the first batch
       float4 h = ray_hit[(size_t)i * batch_size];
       bool hit = h.w >= 0.0f;
       radiance = hit ? (float4)(ray_radiance[(size_t)i * batch_size].xyz * h.w, h.w) : (float4)(0.0f);
@@ -82,9 +90,11 @@ __kernel void resolve_accumulate(int2 size, float16 inv_proj, __global const flo
   acc_weight[i] = weight;
 }
 
-__kernel void resolve_finalize(int2 size, __global const float4* acc_radiance, __global const float2* acc_weight,
+__kernel void resolve_finalize(int2 size, __global const int* tile_list, int tiles_x,
+                               __global const float4* acc_radiance, __global const float2* acc_weight,
                                __global float4* out_rgba, __global float* out_distance) {
-  int x = get_global_id(0), y = get_global_id(1);
+  int2 xy = tile_pixel(tile_list, tiles_x);
+  int x = xy.x, y = xy.y;
   if (x >= size.x || y >= size.y) return;
   int i = y * size.x + x;
   float4 r = acc_radiance[i];

@@ -2,7 +2,9 @@
 // Writes each pixel's view-space surface point with its planar depth in w (SSRCL_NO_SURFACE for
 // sky/invalid), HZB level 0, view-space normals with roughness in w, sanitized color (colour
 // pyramid level 0), each pixel's ray count (0 for sky and pixels above max_roughness, 1 for
-// mirror-like ones), and appends traced pixels to ray_list.
+// mirror-like ones), and lists the work: traced pixels in ray_list, and in tile_list the 8x8
+// tiles (this kernel's work-groups) holding a pixel that reflects. With `classify` 0 every pixel
+// and tile is listed instead (the unclassified baseline: the others' work-items exit at once).
 //
 // A pixel's surface is the plane through its point with its normal. HZB level 0 is the nearest
 // depth of that plane over the pixel's square (its centre depth for invalid normals), so the
@@ -20,22 +22,33 @@ inline float sanitize_radiance(float v) {
   return isnan(v) ? 0.0f : clamp(v, 0.0f, SSRCL_MAX_RADIANCE);
 }
 
-// Runs in 2D work-groups; traced pixels are counted in local memory first so the global counters
-// (ray_count[0] listed pixels, ray_count[1] rays) see one atomic per group instead of one per pixel.
+// Glossy pixels' ray count: samples_per_pixel, or with full_rays_roughness > 0 a share of it in
+// proportion to roughness up to that roughness (at least one ray): narrow lobes see a small part of
+// the scene, and their neighbours' reused rays cover it.
+inline int glossy_rays(float roughness, int samples_per_pixel, float full_rays_roughness) {
+  if (!(full_rays_roughness > 0.0f) || roughness >= full_rays_roughness) return samples_per_pixel;
+  return clamp((int)ceil((float)samples_per_pixel * roughness / full_rays_roughness), 1, samples_per_pixel);
+}
+
+// Runs in 8x8 work-groups; listed pixels are counted in local memory first so the global counters
+// (ray_count[0] listed pixels, [1] rays, [2] listed tiles, [3] pixels with rays) see one atomic
+// per group instead of one per pixel.
 __kernel void setup(int2 size, float near_plane, float far_plane, float16 normal_matrix, float16 inv_proj,
                     __global const float* color_in, int color_channels,
                     __global const float* depth_in,
                     __global const float* normal_in,
                     __global const float* roughness_in, float constant_roughness,
-                    float max_roughness, float mirror_roughness, int samples_per_pixel, int trace_stride,
+                    float max_roughness, float mirror_roughness, int samples_per_pixel, float full_rays_roughness,
+                    int trace_stride, int classify,
                     __global float4* position_out, __global float* hzb_out, __global float4* normal_out,
                     __global float4* color_out,
-                    __global int* pixel_rays, __global int* ray_list, __global int* ray_count) {
-  __local int group_count, group_base, group_rays;
+                    __global int* pixel_rays, __global int* ray_list, __global int* tile_list,
+                    __global int* ray_count) {
+  __local int group_count, group_base, group_rays, group_traced, group_reflecting;
   int x = get_global_id(0), y = get_global_id(1);
   bool inside = x < size.x && y < size.y;
   int i = y * size.x + x;
-  bool traced = false;
+  bool traced = false, listed = false, reflecting = false;
   if (inside) {
     float d = depth_in[i];
     // Cycles' background depth (1e10) means no surface even under an infinite far plane.
@@ -82,23 +95,38 @@ __kernel void setup(int2 size, float near_plane, float far_plane, float16 normal
     // A normal facing away from the viewer (seen from behind) defines no reflection.
     bool reflects = surface && normal_ok && r <= max_roughness && dot(view_dir, nv) < 0.0f;
     bool strided_out = (x % trace_stride) != 0 || (y % trace_stride) != 0;
-    pixel_rays[i] = !reflects ? 0 : r <= mirror_roughness ? 1 : strided_out ? -1 : samples_per_pixel;
-    traced = pixel_rays[i] > 0;
+    int rays = !reflects                ? 0
+               : r <= mirror_roughness    ? 1
+               : strided_out              ? -1
+                                          : glossy_rays(r, samples_per_pixel, full_rays_roughness);
+    pixel_rays[i] = rays;
+    traced = rays > 0;
+    reflecting = rays != 0;
+    listed = traced || !classify;
   }
 
   bool leader = get_local_id(0) == 0 && get_local_id(1) == 0;
   if (leader) {
     group_count = 0;
     group_rays = 0;
+    group_traced = 0;
+    group_reflecting = 0;
   }
   barrier(CLK_LOCAL_MEM_FENCE);
-  int slot = traced ? atomic_inc(&group_count) : 0;
-  if (traced) atomic_add(&group_rays, pixel_rays[i]);
+  int slot = listed ? atomic_inc(&group_count) : 0;
+  if (traced) {
+    atomic_add(&group_rays, pixel_rays[i]);
+    atomic_inc(&group_traced);
+  }
+  if (reflecting) atomic_inc(&group_reflecting);
   barrier(CLK_LOCAL_MEM_FENCE);
   if (leader) {
     group_base = atomic_add(&ray_count[0], group_count);
     atomic_add(&ray_count[1], group_rays);
+    atomic_add(&ray_count[3], group_traced);
+    if (group_reflecting > 0 || !classify)
+      tile_list[atomic_inc(&ray_count[2])] = get_group_id(1) * get_num_groups(0) + get_group_id(0);
   }
   barrier(CLK_LOCAL_MEM_FENCE);
-  if (traced) ray_list[group_base + slot] = i;
+  if (listed) ray_list[group_base + slot] = i;
 }

@@ -518,6 +518,26 @@ TEST_P(GlossySsr, FastPathBiasAndError) {
   }
 }
 
+// Ray counts that follow roughness (full rays only at roughness 1: 2 rays at r 0.3, 3 at r 0.6)
+// change how many rays each pixel draws, so the weights the resolve gives its neighbours' rays;
+// the estimate must stay unbiased, its noise between the uniform counts'.
+TEST_P(GlossySsr, RaysFollowingRoughnessStayUnbiased) {
+  const GlossyCase& c = glossyCase(GetParam());
+  ssrcl::TraceSettings s;
+  s.fullRaysRoughness = 1.0f;
+  const ssrcl::Image adaptive = runSsr(c, s);
+  checkInvariants(c, adaptive);
+  s.fullRaysRoughness = 0.0f;
+  s.samplesPerPixel = 1;
+  const Errors e = compare(c, adaptive), e1 = compare(c, runSsr(c, s)), e4 = compare(c, runSsr(c, {}));
+  std::cout << "r " << c.roughness << " rays follow roughness: " << describe(e) << "\n";
+  record("adaptive", e);
+  EXPECT_LT(std::abs(e.biasA), 0.008);
+  for (int ch = 0; ch < 3; ++ch) EXPECT_LT(std::abs(e.biasChannel[ch]), 0.013) << ch;
+  EXPECT_LT(e.rmsA, e1.rmsA);
+  EXPECT_GT(e.rmsA, e4.rmsA);
+}
+
 INSTANTIATE_TEST_SUITE_P(Roughness, GlossySsr, ::testing::Values(0.3, 0.6),
                          [](const auto& info) { return "r" + std::to_string(int(std::lround(info.param * 100))); });
 

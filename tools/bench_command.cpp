@@ -2,6 +2,7 @@
 #include <iostream>
 #include <map>
 #include <memory>
+#include <sstream>
 
 #include "bench_inputs.hpp"
 #include "bench_report.hpp"
@@ -19,8 +20,9 @@ struct BenchOptions {
   float sceneRoughness = 0.3f;
   std::vector<std::string> qualities{"draft", "medium", "high"}, tracers{"hiz", "dda", "linear"};
   std::vector<int> sppList;
+  std::vector<float> fullRaysRoughness;
   int repetitions = 3, referenceSpp = 64;
-  bool noReference = false;
+  bool noReference = false, unclassified = false;
 };
 
 std::vector<BenchConfig> configurations(const BenchOptions& o) {
@@ -37,6 +39,18 @@ std::vector<BenchConfig> configurations(const BenchOptions& o) {
     TraceSettings s = qualityPreset("medium");
     s.samplesPerPixel = spp;
     configs.push_back({"medium, " + std::to_string(spp) + " rays", s});
+  }
+  for (float r : o.fullRaysRoughness) {
+    TraceSettings s = qualityPreset("medium");
+    s.fullRaysRoughness = r;
+    std::ostringstream name;
+    name << "medium, full rays at r" << r;
+    configs.push_back({name.str(), s});
+  }
+  if (o.unclassified) {
+    TraceSettings s = qualityPreset("medium");
+    s.classifyWork = false;
+    configs.push_back({"medium, unclassified", s});
   }
   return configs;
 }
@@ -112,6 +126,11 @@ Action addBenchCommand(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::IsMember({"hiz", "dda", "linear"}));
   cmd->add_option("--spp", o->sppList, "Also the medium preset at these rays per pixel");
+  cmd->add_option("--full-rays-roughness", o->fullRaysRoughness,
+                  "Also the medium preset with ray counts following roughness, full from these roughnesses")
+      ->check(CLI::Range(0.0f, 1.0f));
+  cmd->add_flag("--unclassified", o->unclassified,
+                "Also the medium preset dispatching every pixel and tile (no work classification)");
   cmd->add_option("--repetitions", o->repetitions, "Timed runs per configuration (after one warm-up)")
       ->capture_default_str()
       ->check(CLI::Range(1, 1000));

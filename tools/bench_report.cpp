@@ -57,7 +57,9 @@ void printBenchTable(std::ostream& out, const std::vector<BenchResult>& results,
       input = r.input;
       out << "\n"
           << input << " (" << r.width << "x" << r.height << ", " << std::fixed << std::setprecision(1)
-          << 100.0 * r.pixelsTraced / (double(r.width) * r.height) << "% of pixels traced at the first setting)\n"
+          << 100.0 * r.pixelsTraced / (double(r.width) * r.height) << "% of pixels traced, "
+          << 100.0 * r.tilesResolved / (double((r.width + 7) / 8) * ((r.height + 7) / 8))
+          << "% of 8x8 tiles resolved at the first setting)\n"
           << std::left << std::setw(26) << "config" << std::right << std::setw(10) << "total ms" << std::setw(10)
           << "setup" << std::setw(8) << "hzb" << std::setw(10) << "trace" << std::setw(10) << "resolve" << std::setw(9)
           << "filter" << std::setw(11) << "Mrays/s" << std::setw(10) << "fetch/ray" << std::setw(9) << "MiB/MP"
@@ -93,6 +95,7 @@ void writeBenchJson(const std::string& path, const std::vector<BenchResult>& res
                         {"width", r.width},
                         {"height", r.height},
                         {"pixels_traced", r.pixelsTraced},
+                        {"tiles_resolved", r.tilesResolved},
                         {"rays", r.rays},
                         {"rays_per_second", r.raysPerSecond},
                         {"depth_fetches_per_ray", r.fetchesPerRay},

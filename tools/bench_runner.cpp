@@ -86,6 +86,7 @@ std::vector<BenchResult> runBench(const Device& device, const BenchInput& input,
     }
     for (auto& [stage, v] : samples) r.stages[stage] = stats(v);
     r.pixelsTraced = p.stageTimes().tracedPixels;
+    r.tilesResolved = p.stageTimes().resolvedTiles;
     r.rays = p.stageTimes().tracedRays;
     const double traceMs = r.stages["trace"].medianMs;
     r.raysPerSecond = traceMs > 0 ? r.rays / (traceMs * 1e-3) : 0;

@@ -31,7 +31,7 @@ struct BenchResult {
   std::string input, config;
   int width = 0, height = 0;
   std::map<std::string, StageStats> stages;  // per stage from profiling events, and "total"
-  long long pixelsTraced = 0, rays = 0;
+  long long pixelsTraced = 0, rays = 0, tilesResolved = 0;
   double raysPerSecond = 0;  // rays / median trace time
   double fetchesPerRay = 0;  // from one extra run in counting mode
   std::vector<long long> iterationHistogram;

@@ -14,6 +14,7 @@ TraceSettings SettingsOptions::resolve() const {
   apply(s.linearStepPixels, linearStep);
   apply(s.maxIterations, maxIterations);
   apply(s.samplesPerPixel, spp);
+  apply(s.fullRaysRoughness, fullRaysRoughness);
   apply(s.reuseRadius, reuseRadius);
   apply(s.seed, seed);
   apply(s.prefilter, prefilter);
@@ -33,6 +34,10 @@ void addSettingsOptions(CLI::App& cmd, SettingsOptions& o) {
       ->capture_default_str()
       ->check(CLI::IsMember({"draft", "medium", "high", "reference"}));
   cmd.add_option("--spp", o.spp, "Rays per glossy pixel")->group(q)->check(CLI::Range(1, 65536));
+  cmd.add_option("--full-rays-roughness", o.fullRaysRoughness,
+                 "Ray counts follow roughness: --spp rays from this roughness up, fewer below (0 = off)")
+      ->group(q)
+      ->check(CLI::Range(0.0f, 1.0f));
   cmd.add_option("--seed", o.seed, "Seed of the sample sequence (same seed, same output)")->group(q);
   cmd.add_option("--tracer", o.tracer, "hiz (hierarchical), dda (every pixel crossed) or linear (fine steps)")
       ->group(q)
@@ -73,7 +78,7 @@ void addSettingsOptions(CLI::App& cmd, SettingsOptions& o) {
                  "GGX alpha = roughness^2 (squared, Cycles) or roughness (linear)")
       ->group(m)
       ->check(CLI::IsMember({"squared", "linear"}));
-  cmd.add_option("--thickness", o.thickness, "Surface thickness relative to its depth (default 0.02)")
+  cmd.add_option("--thickness", o.thickness, "Surface thickness relative to its depth (default 0.002)")
       ->group(m)
       ->check(CLI::Range(1e-6f, 10.0f));
   cmd.add_option("--edge-fade", o.edgeFade, "Fraction of the screen over which A fades at its edges (default 0.05)")

@@ -44,7 +44,11 @@ struct TraceSettings {
   float constantRoughness = -1.0f;  // >= 0 overrides the roughness image
 
   int samplesPerPixel = 4;  // rays per glossy pixel
-  uint32_t seed = 0;        // same inputs and seed, same output (on one device)
+  // > 0: ray counts follow roughness. Glossy pixels at or above this roughness get samplesPerPixel
+  // rays, smoother ones proportionally fewer (at least 1): narrow lobes see a small part of the
+  // scene and their neighbours' reused rays cover it. 0: every glossy pixel gets samplesPerPixel.
+  float fullRaysRoughness = 0.0f;
+  uint32_t seed = 0;  // same inputs and seed, same output (on one device)
   RoughnessMapping roughnessMapping = RoughnessMapping::Squared;
   float mirrorRoughness = 0.02f;  // at or below: one deterministic mirror ray, no reuse
   int reuseRadius = 2;            // resolve reuses rays of (2r+1)^2 neighbours (Stachowiak); 0 = own only
@@ -56,6 +60,10 @@ struct TraceSettings {
   // resolve from their neighbours' rays (needs reuseRadius >= 1). Mirror pixels always trace.
   int traceStride = 1;
   bool countWork = false;  // count texel reads and iterations per ray (StageTimes); slower
+  // Rays are dispatched for the pixels that reflect only, and the resolve for the 8x8 tiles that
+  // hold one: sky and pixels above maxRoughness cost nothing past setup. false dispatches every
+  // pixel and tile (the others exit at once), the same output: the baseline for benchmarks.
+  bool classifyWork = true;
 };
 
 // Named bundles of the settings above:
@@ -71,8 +79,9 @@ TraceSettings qualityPreset(const std::string& name);
 struct StageTimes {
   // "upload", "setup", "hzb", "color_mips", "trace", "resolve", "download"
   std::map<std::string, double> ms;
-  long long tracedPixels = 0;  // pixels that got rays (not sky, not above max roughness)
-  long long tracedRays = 0;    // rays: one per mirror-like pixel, samplesPerPixel per glossy one
+  long long tracedPixels = 0;   // pixels that got rays (not sky, not above max roughness)
+  long long tracedRays = 0;     // rays: one per mirror-like pixel, samplesPerPixel (or fewer) per glossy one
+  long long resolvedTiles = 0;  // 8x8 tiles the resolve ran on (those holding a pixel that reflects)
   // With TraceSettings::countWork: depth-buffer texels read by all rays, and how many rays took
   // 0, 1, 2-3, 4-7, ... traversal iterations (bin b counts [2^(b-1), 2^b)).
   long long depthFetches = 0;
