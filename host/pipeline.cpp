@@ -90,6 +90,8 @@ struct Pipeline::Impl {
   void validateSettings() const;
   void validate();
   void allocate();
+  int samplesPerBatch() const;
+  size_t rayRecordBytes(int samples) const;
   int batchSize();
   void run();
   cl::CommandQueue& queue() { return device.impl().queue; }
@@ -199,33 +201,45 @@ void Pipeline::Impl::allocate() {
   finalize = cl::Kernel(program, "resolve_finalize");
   denoise = cl::Kernel(program, "denoise");
 
-  fixedBytes = 0;
-  auto buffer = [&](cl_mem_flags flags, size_t bytes) {
-    bytes = std::max<size_t>(bytes, 4);
-    fixedBytes += bytes;
-    return cl::Buffer(ctx, flags, bytes);
+  // Sizes first: a frame the device cannot hold fails here with the sizes named, not later with an
+  // OpenCL status from whichever buffer or kernel meets the limit first.
+  struct Planned {
+    cl::Buffer* buffer;
+    cl_mem_flags flags;
+    size_t bytes;
   };
-  colorIn = buffer(CL_MEM_READ_ONLY, pixels * colorChannels * sizeof(float));
-  depthIn = buffer(CL_MEM_READ_ONLY, pixels * sizeof(float));
-  normalIn = buffer(CL_MEM_READ_ONLY, pixels * 3 * sizeof(float));
-  roughnessIn = buffer(CL_MEM_READ_ONLY, pixels * sizeof(float));
-  hzb = buffer(CL_MEM_READ_WRITE, hzbSize * sizeof(float));
+  const std::vector<Planned> plan = {
+      {&colorIn, CL_MEM_READ_ONLY, pixels * colorChannels * sizeof(float)},
+      {&depthIn, CL_MEM_READ_ONLY, pixels * sizeof(float)},
+      {&normalIn, CL_MEM_READ_ONLY, pixels * 3 * sizeof(float)},
+      {&roughnessIn, CL_MEM_READ_ONLY, pixels * sizeof(float)},
+      {&hzb, CL_MEM_READ_WRITE, hzbSize * sizeof(float)},
+      {&workCounters, CL_MEM_READ_WRITE, (kFetchSlots + kHistogramBins) * sizeof(cl_int)},
+      {&positions, CL_MEM_READ_WRITE, pixels * sizeof(cl_float4)},
+      {&normals, CL_MEM_READ_WRITE, pixels * sizeof(cl_float4)},
+      {&colorPyramid, CL_MEM_READ_WRITE, hzbSize * sizeof(cl_float4)},
+      {&pixelRays, CL_MEM_READ_WRITE, pixels * sizeof(cl_int)},
+      {&rayList, CL_MEM_READ_WRITE, pixels * sizeof(cl_int)},
+      {&tileList, CL_MEM_READ_WRITE, size_t(tilesX) * tilesY * sizeof(cl_int)},
+      {&rayCount, CL_MEM_READ_WRITE, kRayCounts * sizeof(cl_int)},
+      {&accRadiance, CL_MEM_READ_WRITE, pixels * sizeof(cl_float4)},
+      {&accWeight, CL_MEM_READ_WRITE, pixels * sizeof(cl_float2)},
+      {&resolvedRgba, CL_MEM_READ_WRITE, pixels * sizeof(cl_float4)},
+      {&resolvedDistance, CL_MEM_READ_WRITE, pixels * sizeof(float)},
+      {&outRgba, CL_MEM_WRITE_ONLY, pixels * sizeof(cl_float4)},
+      {&outDistance, CL_MEM_WRITE_ONLY, pixels * sizeof(float)},
+  };
+  fixedBytes = 0;
+  size_t largest = rayRecordBytes(samplesPerBatch());
+  for (const Planned& b : plan) {
+    fixedBytes += std::max<size_t>(b.bytes, 4);
+    largest = std::max(largest, b.bytes);
+  }
+  detail::checkDeviceMemory(device.impl(), largest, fixedBytes + 2 * rayRecordBytes(samplesPerBatch()),
+                            "a " + std::to_string(width) + "x" + std::to_string(height) + " frame");
+  for (const Planned& b : plan) *b.buffer = cl::Buffer(ctx, b.flags, std::max<size_t>(b.bytes, 4));
   levelBuffer =
       cl::Buffer(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, levels.size() * sizeof(HzbLevel), levels.data());
-  workCounters = buffer(CL_MEM_READ_WRITE, (kFetchSlots + kHistogramBins) * sizeof(cl_int));
-  positions = buffer(CL_MEM_READ_WRITE, pixels * sizeof(cl_float4));
-  normals = buffer(CL_MEM_READ_WRITE, pixels * sizeof(cl_float4));
-  colorPyramid = buffer(CL_MEM_READ_WRITE, hzbSize * sizeof(cl_float4));
-  pixelRays = buffer(CL_MEM_READ_WRITE, pixels * sizeof(cl_int));
-  rayList = buffer(CL_MEM_READ_WRITE, pixels * sizeof(cl_int));
-  tileList = buffer(CL_MEM_READ_WRITE, size_t(tilesX) * tilesY * sizeof(cl_int));
-  rayCount = buffer(CL_MEM_READ_WRITE, kRayCounts * sizeof(cl_int));
-  accRadiance = buffer(CL_MEM_READ_WRITE, pixels * sizeof(cl_float4));
-  accWeight = buffer(CL_MEM_READ_WRITE, pixels * sizeof(cl_float2));
-  resolvedRgba = buffer(CL_MEM_READ_WRITE, pixels * sizeof(cl_float4));
-  resolvedDistance = buffer(CL_MEM_READ_WRITE, pixels * sizeof(float));
-  outRgba = buffer(CL_MEM_WRITE_ONLY, pixels * sizeof(cl_float4));
-  outDistance = buffer(CL_MEM_WRITE_ONLY, pixels * sizeof(float));
   batchCapacity = 0;
   reflection = Image(width, height, 4);
   distance = Image(width, height, 1);
@@ -244,15 +258,24 @@ void Pipeline::commit() {
 
 // Samples traced per pass: all of them when the ray records fit in kRayRecordBudget, else fewer
 // passes' worth at a time (the resolve accumulates across passes, so the result is the same).
-int Pipeline::Impl::batchSize() {
+int Pipeline::Impl::samplesPerBatch() const {
   constexpr size_t kRayRecordBudget = size_t(512) << 20;
-  const size_t perSample = size_t(width) * height * 2 * sizeof(cl_float4);
+  const size_t perSample = 2 * rayRecordBytes(1);
   const int fit = static_cast<int>(std::max<size_t>(1, kRayRecordBudget / perSample));
-  const int batch = std::min(settings.samplesPerPixel, fit);
+  return std::min(settings.samplesPerPixel, fit);
+}
+
+// One of the two ray-record buffers (hit, radiance) for `samples` samples of every pixel.
+size_t Pipeline::Impl::rayRecordBytes(int samples) const {
+  return size_t(width) * height * sizeof(cl_float4) * size_t(samples);
+}
+
+int Pipeline::Impl::batchSize() {
+  const int batch = samplesPerBatch();
   if (batch > batchCapacity) {
     const cl::Context& ctx = device.impl().context;
-    rayHit = cl::Buffer(ctx, CL_MEM_READ_WRITE, perSample / 2 * batch);
-    rayRadiance = cl::Buffer(ctx, CL_MEM_READ_WRITE, perSample / 2 * batch);
+    rayHit = cl::Buffer(ctx, CL_MEM_READ_WRITE, rayRecordBytes(batch));
+    rayRadiance = cl::Buffer(ctx, CL_MEM_READ_WRITE, rayRecordBytes(batch));
     batchCapacity = batch;
   }
   return batch;
@@ -416,9 +439,7 @@ const Image& Pipeline::output(const std::string& name) const {
 
 const StageTimes& Pipeline::stageTimes() const { return impl_->times; }
 
-size_t Pipeline::deviceBytes() const {
-  return impl_->fixedBytes + size_t(impl_->batchCapacity) * impl_->width * impl_->height * 2 * sizeof(cl_float4);
-}
+size_t Pipeline::deviceBytes() const { return impl_->fixedBytes + 2 * impl_->rayRecordBytes(impl_->batchCapacity); }
 
 std::vector<Image> Pipeline::readHzb() const {
   if (!impl_->committed) throw Error(ErrorCode::InvalidArgument, "pipeline: readHzb() before commit()");

@@ -280,7 +280,8 @@ INSTANTIATE_TEST_SUITE_P(Cases, GgxLobe, ::testing::ValuesIn(lobeCases()),
 // The same procedure must reject samples that are close to, but not, the hypothesis: alpha 10%
 // off, and the common mistake of sampling the NDF D(h) cos(theta_h) instead of the visible normals.
 TEST(GgxSampler, ChiSquareRejectsWrongHypotheses) {
-  for (const auto& [alpha, cosView] : {std::pair{0.25, 0.5}, std::pair{0.0025, 0.1}}) {
+  for (const auto& lobe : {std::pair{0.25, 0.5}, std::pair{0.0025, 0.1}}) {
+    const double alpha = lobe.first, cosView = lobe.second;  // named, not bound: lambdas capture them
     const glm::vec3 of = viewWithCos(cosView);
     const dvec3 o = toDouble(of);
     const auto samples = ssrcl::test::sampleGgxDirections(device(), of, float(alpha), kSamples, 17);

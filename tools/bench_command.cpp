@@ -10,6 +10,7 @@
 #include "commands.hpp"
 #include "device_option.hpp"
 #include "exit_codes.hpp"
+#include "settings_options.hpp"
 
 namespace ssrcl::cli {
 namespace {
@@ -32,7 +33,7 @@ std::vector<BenchConfig> configurations(const BenchOptions& o) {
   for (const std::string& t : o.tracers) {
     if (t == "hiz" && std::find(o.qualities.begin(), o.qualities.end(), "medium") != o.qualities.end()) continue;
     TraceSettings s = qualityPreset("medium");
-    s.tracer = t == "linear" ? Tracer::Linear : t == "dda" ? Tracer::DDA : Tracer::HiZ;
+    selectTracer(s, t);
     configs.push_back({"medium, " + t + " tracer", s});
   }
   for (int spp : o.sppList) {
@@ -122,7 +123,8 @@ Action addBenchCommand(CLI::App& app) {
   cmd->add_option("--quality", o->qualities, "Presets to measure")
       ->capture_default_str()
       ->check(CLI::IsMember({"draft", "medium", "high", "reference"}));
-  cmd->add_option("--tracers", o->tracers, "Tracers to compare at the medium preset's rays")
+  cmd->add_option("--tracers", o->tracers,
+                  "Tracers to compare at the medium preset's rays (dda and linear march to the screen edge)")
       ->capture_default_str()
       ->check(CLI::IsMember({"hiz", "dda", "linear"}));
   cmd->add_option("--spp", o->sppList, "Also the medium preset at these rays per pixel");

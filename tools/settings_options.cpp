@@ -12,7 +12,6 @@ TraceSettings SettingsOptions::resolve() const {
   apply(s.edgeFade, edgeFade);
   apply(s.mirrorRoughness, mirrorRoughness);
   apply(s.linearStepPixels, linearStep);
-  apply(s.maxIterations, maxIterations);
   apply(s.samplesPerPixel, spp);
   apply(s.fullRaysRoughness, fullRaysRoughness);
   apply(s.reuseRadius, reuseRadius);
@@ -21,9 +20,15 @@ TraceSettings SettingsOptions::resolve() const {
   apply(s.denoise, denoise);
   if (roughnessMapping)
     s.roughnessMapping = *roughnessMapping == "linear" ? RoughnessMapping::Linear : RoughnessMapping::Squared;
-  if (tracer) s.tracer = *tracer == "linear" ? Tracer::Linear : *tracer == "dda" ? Tracer::DDA : Tracer::HiZ;
+  if (tracer) selectTracer(s, *tracer);
+  apply(s.maxIterations, maxIterations);
   apply(s.traceStride, traceStride);
   return s;
+}
+
+void selectTracer(TraceSettings& s, const std::string& name) {
+  s.tracer = name == "linear" ? Tracer::Linear : name == "dda" ? Tracer::DDA : Tracer::HiZ;
+  if (s.tracer != Tracer::HiZ) s.maxIterations = qualityPreset("reference").maxIterations;
 }
 
 void addSettingsOptions(CLI::App& cmd, SettingsOptions& o) {
@@ -48,7 +53,8 @@ void addSettingsOptions(CLI::App& cmd, SettingsOptions& o) {
   cmd.add_option("--linear-step", o.linearStep, "Step of the linear tracer, in pixels")
       ->group(q)
       ->check(CLI::Range(0.05f, 8.0f));
-  cmd.add_option("--max-iterations", o.maxIterations, "Hi-Z traversal steps per ray")
+  cmd.add_option("--max-iterations", o.maxIterations,
+                 "Traversal steps per ray (default: the preset's for hiz, unlimited for dda and linear)")
       ->group(q)
       ->check(CLI::Range(1, 1 << 20));
   cmd.add_option("--reuse-radius", o.reuseRadius, "Resolve reuses rays of (2r+1)^2 neighbours; 0 = own rays only")

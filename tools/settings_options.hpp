@@ -22,4 +22,9 @@ struct SettingsOptions {
 
 void addSettingsOptions(CLI::App& cmd, SettingsOptions& o);
 
+// Sets the tracer by its option name (hiz, dda, linear). The step-by-step tracers march until the
+// ray leaves the screen: maxIterations bounds Hi-Z's traversal, which spans a screen in ~log2 steps,
+// and would cut DDA and linear rays short at that many pixels.
+void selectTracer(TraceSettings& s, const std::string& name);
+
 }  // namespace ssrcl::cli
