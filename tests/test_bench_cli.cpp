@@ -19,8 +19,10 @@ std::string cli(const std::string& args) { return shellQuote(SSRCL_CLI) + " " + 
 TEST(BenchCli, GeneratedSceneTableJsonAndPlot) {
   ssrcl::test::TempDir dir("ssrcl-bench");
   const std::string json = dir.file("bench.json"), svg = dir.file("bench.svg");
-  auto r = runCommand(cli("bench --scene half_sky --size 96x54 --repetitions 2 --reference-spp 8 --quality draft medium "
-                          "--tracers hiz linear --spp 8 --json " + shellQuote(json) + " --plot " + shellQuote(svg)));
+  auto r =
+      runCommand(cli("bench --scene half_sky --size 96x54 --repetitions 2 --reference-spp 8 --quality draft medium "
+                     "--tracers hiz linear --spp 8 --json " +
+                     shellQuote(json) + " --plot " + shellQuote(svg)));
   ASSERT_EQ(r.exitCode, 0) << r.output;
   for (const char* row : {"draft", "medium", "medium, linear tracer", "medium, 8 rays"})
     EXPECT_NE(r.output.find(row), std::string::npos) << row << "\n" << r.output;
@@ -60,6 +62,34 @@ TEST(BenchCli, GeneratedSceneTableJsonAndPlot) {
   const std::string plot = ssrcl::test::readBytes(svg);
   EXPECT_EQ(plot.rfind("<svg", 0), 0u);
   for (const char* label : {"draft", "medium", "half_sky"}) EXPECT_NE(plot.find(label), std::string::npos) << label;
+}
+
+// The adaptive-work and equal-error rows: classification changes the work dispatched, not the
+// output; ray counts follow roughness; coarser linear steps read fewer texels.
+TEST(BenchCli, AdaptiveWorkAndLinearStepRows) {
+  ssrcl::test::TempDir dir("ssrcl-bench");
+  const std::string json = dir.file("bench.json");
+  auto r =
+      runCommand(cli("bench --scene half_sky --size 97x55 --scene-roughness 0.3 --repetitions 1 --reference-spp 8 "
+                     "--quality medium --tracers hiz --unclassified --full-rays-roughness 0.6 --linear-steps 0.5 2 "
+                     "--json " +
+                     shellQuote(json)));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const auto j = nlohmann::json::parse(ssrcl::test::readBytes(json));
+  std::map<std::string, nlohmann::json> byConfig;
+  for (const auto& e : j["results"]) byConfig[e["config"]] = e;
+  ASSERT_EQ(byConfig.size(), 5u) << r.output;
+  const auto& medium = byConfig["medium"];
+  const auto& unclassified = byConfig["medium, unclassified"];
+  const auto& adaptive = byConfig["medium, full rays at r0.6"];
+  EXPECT_EQ(unclassified["tiles_resolved"].get<long long>(), 13 * 7);  // every tile of 97x55
+  EXPECT_LT(medium["tiles_resolved"].get<long long>(), 13 * 7);
+  EXPECT_EQ(unclassified["rays"], medium["rays"]);
+  EXPECT_EQ(unclassified["error_vs_reference"]["rmse"], medium["error_vs_reference"]["rmse"]);
+  // Roughness 0.3 of full rays at 0.6: ceil(4 * 0.5) = 2 rays per pixel instead of 4.
+  EXPECT_EQ(2 * adaptive["rays"].get<long long>(), medium["rays"].get<long long>());
+  EXPECT_GT(byConfig["medium, linear 0.5 px"]["depth_fetches_per_ray"].get<double>(),
+            1.5 * byConfig["medium, linear 2 px"]["depth_fetches_per_ray"].get<double>());
 }
 
 TEST(BenchCli, BadOptionsAreUsageErrors) {

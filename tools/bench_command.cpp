@@ -21,7 +21,7 @@ struct BenchOptions {
   float sceneRoughness = 0.3f;
   std::vector<std::string> qualities{"draft", "medium", "high"}, tracers{"hiz", "dda", "linear"};
   std::vector<int> sppList;
-  std::vector<float> fullRaysRoughness;
+  std::vector<float> fullRaysRoughness, linearSteps;
   int repetitions = 3, referenceSpp = 64;
   bool noReference = false, unclassified = false;
 };
@@ -40,6 +40,16 @@ std::vector<BenchConfig> configurations(const BenchOptions& o) {
     TraceSettings s = qualityPreset("medium");
     s.samplesPerPixel = spp;
     configs.push_back({"medium, " + std::to_string(spp) + " rays", s});
+  }
+  // Coarser linear steps trade its accuracy for time: where its error meets Hi-Z's is the
+  // equal-error comparison.
+  for (float step : o.linearSteps) {
+    TraceSettings s = qualityPreset("medium");
+    selectTracer(s, "linear");
+    s.linearStepPixels = step;
+    std::ostringstream name;
+    name << "medium, linear " << step << " px";
+    configs.push_back({name.str(), s});
   }
   for (float r : o.fullRaysRoughness) {
     TraceSettings s = qualityPreset("medium");
@@ -128,6 +138,8 @@ Action addBenchCommand(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::IsMember({"hiz", "dda", "linear"}));
   cmd->add_option("--spp", o->sppList, "Also the medium preset at these rays per pixel");
+  cmd->add_option("--linear-steps", o->linearSteps, "Also the linear tracer at these step lengths (pixels)")
+      ->check(CLI::Range(0.05f, 8.0f));
   cmd->add_option("--full-rays-roughness", o->fullRaysRoughness,
                   "Also the medium preset with ray counts following roughness, full from these roughnesses")
       ->check(CLI::Range(0.0f, 1.0f));
