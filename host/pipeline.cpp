@@ -229,13 +229,14 @@ void Pipeline::Impl::allocate() {
       {&outRgba, CL_MEM_WRITE_ONLY, pixels * sizeof(cl_float4)},
       {&outDistance, CL_MEM_WRITE_ONLY, pixels * sizeof(float)},
   };
+  const size_t records = rayRecordBytes(samplesPerBatch());  // each of the two, allocated at execute()
   fixedBytes = 0;
-  size_t largest = rayRecordBytes(samplesPerBatch());
+  size_t largest = records;
   for (const Planned& b : plan) {
     fixedBytes += std::max<size_t>(b.bytes, 4);
     largest = std::max(largest, b.bytes);
   }
-  detail::checkDeviceMemory(device.impl(), largest, fixedBytes + 2 * rayRecordBytes(samplesPerBatch()),
+  detail::checkDeviceMemory(device.impl(), largest, fixedBytes + 2 * records,
                             "a " + std::to_string(width) + "x" + std::to_string(height) + " frame");
   for (const Planned& b : plan) *b.buffer = cl::Buffer(ctx, b.flags, std::max<size_t>(b.bytes, 4));
   levelBuffer =

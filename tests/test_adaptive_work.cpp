@@ -25,14 +25,19 @@ struct Frame {
   ssrcl::GBuffer g;
 };
 
-// The half-sky scene with roughness varying over the frame (a value per pixel that is never on a
-// ray-count boundary of the rule under test), so sky, too-rough, mirror and glossy pixels all occur.
-Frame halfSky(int width, int height) {
-  const ssrcl::test::Scene scene = ssrcl::test::makeScene("half_sky");
+Frame render(const std::string& name, int width, int height) {
+  const ssrcl::test::Scene scene = ssrcl::test::makeScene(name);
   Frame f;
   f.camera = ssrcl::test::makeCamera(scene.view, width, height);
   ssrcl::test::AnalyticGBuffer g = ssrcl::test::renderGBuffer(scene, f.camera);
   f.g = static_cast<ssrcl::GBuffer&>(g);
+  return f;
+}
+
+// The half-sky scene with roughness varying over the frame (a value per pixel that is never on a
+// ray-count boundary of the rule under test), so sky, too-rough, mirror and glossy pixels all occur.
+Frame halfSky(int width, int height) {
+  Frame f = render("half_sky", width, height);
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
       // Mirror-like on the left tenth, then a ramp across the frame.
@@ -128,12 +133,7 @@ TEST(Classification, ListsExactlyTheTilesThatReflect) {
 // A pipeline reused for another frame must not keep the last frame's reflections in tiles the new
 // frame does not resolve.
 TEST(Classification, ReusedPipelineClearsUnlistedTiles) {
-  const Frame sky = halfSky(200, 120);
-  Frame full = sky;
-  const ssrcl::test::Scene floorScene = ssrcl::test::makeScene("spheres_on_mirror");
-  full.camera = ssrcl::test::makeCamera(floorScene.view, 200, 120);
-  ssrcl::test::AnalyticGBuffer g = ssrcl::test::renderGBuffer(floorScene, full.camera);
-  full.g = static_cast<ssrcl::GBuffer&>(g);
+  const Frame sky = halfSky(200, 120), full = render("spheres_on_mirror", 200, 120);
   const TraceSettings s = ssrcl::qualityPreset("medium");
   ssrcl::Pipeline p(device());
   const Output first = run(p, full, s);

@@ -29,40 +29,31 @@ struct BenchOptions {
 std::vector<BenchConfig> configurations(const BenchOptions& o) {
   std::vector<BenchConfig> configs;
   for (const std::string& q : o.qualities) configs.push_back({q, qualityPreset(q)});
+  // Every other row is the medium preset with one knob changed, named "medium, " + label.
+  const auto medium = [&configs](const auto& change, const auto&... label) {
+    TraceSettings s = qualityPreset("medium");
+    change(s);
+    std::ostringstream name;
+    (name << "medium, " << ... << label);
+    configs.push_back({name.str(), s});
+  };
   // The tracers on equal terms: the medium preset's rays, each tracer.
   for (const std::string& t : o.tracers) {
     if (t == "hiz" && std::find(o.qualities.begin(), o.qualities.end(), "medium") != o.qualities.end()) continue;
-    TraceSettings s = qualityPreset("medium");
-    selectTracer(s, t);
-    configs.push_back({"medium, " + t + " tracer", s});
+    medium([&](TraceSettings& s) { selectTracer(s, t); }, t, " tracer");
   }
-  for (int spp : o.sppList) {
-    TraceSettings s = qualityPreset("medium");
-    s.samplesPerPixel = spp;
-    configs.push_back({"medium, " + std::to_string(spp) + " rays", s});
-  }
+  for (int spp : o.sppList) medium([&](TraceSettings& s) { s.samplesPerPixel = spp; }, spp, " rays");
   // Coarser linear steps trade its accuracy for time: where its error meets Hi-Z's is the
   // equal-error comparison.
-  for (float step : o.linearSteps) {
-    TraceSettings s = qualityPreset("medium");
-    selectTracer(s, "linear");
-    s.linearStepPixels = step;
-    std::ostringstream name;
-    name << "medium, linear " << step << " px";
-    configs.push_back({name.str(), s});
-  }
-  for (float r : o.fullRaysRoughness) {
-    TraceSettings s = qualityPreset("medium");
-    s.fullRaysRoughness = r;
-    std::ostringstream name;
-    name << "medium, full rays at r" << r;
-    configs.push_back({name.str(), s});
-  }
-  if (o.unclassified) {
-    TraceSettings s = qualityPreset("medium");
-    s.classifyWork = false;
-    configs.push_back({"medium, unclassified", s});
-  }
+  for (float step : o.linearSteps)
+    medium(
+        [&](TraceSettings& s) {
+          selectTracer(s, "linear");
+          s.linearStepPixels = step;
+        },
+        "linear ", step, " px");
+  for (float r : o.fullRaysRoughness) medium([&](TraceSettings& s) { s.fullRaysRoughness = r; }, "full rays at r", r);
+  if (o.unclassified) medium([](TraceSettings& s) { s.classifyWork = false; }, "unclassified");
   return configs;
 }
 
