@@ -1,8 +1,9 @@
 // G-buffer input. Every pass may come from its own file; channels are found by full name in any
 // part, or as part name + "." + channel (how multi-part writers such as Nuke name layers; a file
 // with a single named part is stored as single-part but keeps its name, so that counts too).
-// Images cover the data window (row 0 = its top row); the display window is ignored, so passes
-// line up by data-window-relative position and only their sizes have to agree.
+// Images cover the data window (row 0 = its top row); passes line up by data-window-relative
+// position and only their sizes have to agree. The geometry pass's data and display windows are
+// kept: the camera describes the display window.
 
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfFrameBuffer.h>
@@ -25,6 +26,7 @@
 #include <utility>
 #include <vector>
 
+#include "exr_header_camera.hpp"
 #include "ssrcl/error.hpp"
 #include "ssrcl/io.hpp"
 
@@ -347,7 +349,9 @@ GBuffer loadGBuffer(const GBufferSource& source) {
   GBuffer gbuffer;
   std::vector<Pass> passes = {
       {"color", &gbuffer.color, 3, source.colorFile, source.colorChannels, "Combined.R,Combined.G,Combined.B", "R,G,B"},
-      {"depth", &gbuffer.depth, 1, source.depthFile, source.depthChannel, "Depth.Z", "Z"},
+      source.positionChannels.empty()
+          ? Pass{"depth", &gbuffer.depth, 1, source.depthFile, source.depthChannel, "Depth.Z", "Z"}
+          : Pass{"position", &gbuffer.position, 3, source.positionFile, source.positionChannels, "", ""},
       {"normal", &gbuffer.normal, 3, source.normalFile, source.normalChannels, "Normal.X,Normal.Y,Normal.Z",
        "N.X,N.Y,N.Z"},
   };
@@ -390,6 +394,17 @@ GBuffer loadGBuffer(const GBufferSource& source) {
       }
       requests.push_back({pass.image, c, &file, names[c], ref});
     }
+  }
+
+  // The windows and header camera of the geometry pass: the camera is matched against them.
+  for (const Request& request : requests) {
+    if (request.image != &gbuffer.depth && request.image != &gbuffer.position) continue;
+    const Imf::Header& header = request.file->file().header(request.ref.part);
+    const auto box = [](const Imath::Box2i& b) { return PixelBox{b.min.x, b.min.y, b.max.x, b.max.y}; };
+    gbuffer.dataWindow = box(header.dataWindow());
+    gbuffer.displayWindow = box(header.displayWindow());
+    gbuffer.headerCamera = detail::cameraFromHeader(header, request.file->path());
+    break;
   }
 
   const Request& first = requests.front();

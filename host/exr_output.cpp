@@ -25,8 +25,9 @@ bool wellFormed(const Image& image, int channels) {
          image.data.size() == std::size_t(image.width) * image.height * channels;
 }
 
-void writeExr(const std::string& path, const Image& rgba, const Image& distance) {
-  Imf::Header header(rgba.width, rgba.height);
+void writeExr(const std::string& path, const Image& rgba, const Image& distance, const ExrWindows& windows) {
+  const auto box = [](const PixelBox& b) { return Imath::Box2i({b.minX, b.minY}, {b.maxX, b.maxY}); };
+  Imf::Header header(box(windows.display), box(windows.data));
   header.compression() = Imf::ZIP_COMPRESSION;
   Imf::FrameBuffer buffer;
   const char* names[] = {"R", "G", "B", "A"};
@@ -55,7 +56,8 @@ void writeExr(const std::string& path, const Image& rgba, const Image& distance)
 
 }  // namespace
 
-void writeReflectionExr(const std::string& path, const Image& rgba, const Image& distance) {
+void writeReflectionExr(const std::string& path, const Image& rgba, const Image& distance,
+                        const std::optional<ExrWindows>& windows) {
   if (!wellFormed(rgba, 4) || !wellFormed(distance, 1) || rgba.width != distance.width ||
       rgba.height != distance.height) {
     throw Error(ErrorCode::InvalidArgument,
@@ -66,6 +68,13 @@ void writeReflectionExr(const std::string& path, const Image& rgba, const Image&
                     std::to_string(rgba.channels) + " and " + std::to_string(distance.width) + "x" +
                     std::to_string(distance.height) + "x" + std::to_string(distance.channels) + ")");
   }
+  const PixelBox whole{0, 0, rgba.width - 1, rgba.height - 1};
+  ExrWindows written = windows.value_or(ExrWindows{whole, whole});
+  if (written.data.width() != rgba.width || written.data.height() != rgba.height || written.display.width() <= 0 ||
+      written.display.height() <= 0)
+    throw Error(ErrorCode::InvalidArgument, path + ": the data window is " + std::to_string(written.data.width()) +
+                                                "x" + std::to_string(written.data.height()) + " but the images are " +
+                                                std::to_string(rgba.width) + "x" + std::to_string(rgba.height));
   const fs::path target(path);
   const fs::path directory = target.parent_path().empty() ? fs::path(".") : target.parent_path();
   std::error_code ec;
@@ -77,7 +86,7 @@ void writeReflectionExr(const std::string& path, const Image& rgba, const Image&
   const fs::path temp =
       directory / ("." + target.filename().string() + ".tmp." + std::to_string(std::random_device{}()) + ".exr");
   try {
-    writeExr(temp.string(), rgba, distance);
+    writeExr(temp.string(), rgba, distance, written);
     fs::rename(temp, target, ec);
     if (ec) throw std::runtime_error("cannot replace it: " + ec.message());
   } catch (const std::exception& e) {  // Iex::BaseExc derives from std::exception

@@ -11,7 +11,7 @@
 namespace ssrcl {
 namespace {
 
-constexpr std::array<const char*, 4> kInputNames = {"color", "depth", "normal", "roughness"};
+constexpr std::array<const char*, 6> kInputNames = {"color", "depth", "normal", "roughness", "base", "specular"};
 
 // Mirror SSRCL_FETCH_SLOTS and the histogram in kernels/trace.cl.
 constexpr size_t kFetchSlots = 1024;
@@ -73,9 +73,11 @@ struct Pipeline::Impl {
   int width = 0, height = 0, colorChannels = 0, tilesX = 0, tilesY = 0;
   std::vector<HzbLevel> levels;
 
-  cl::Kernel setup, hzbReduce, colorReduce, trace, accumulate, finalize, denoise;
-  cl::Buffer colorIn, depthIn, normalIn, roughnessIn;
+  cl::Kernel setup, hzbReduce, colorReduce, thickness, trace, accumulate, finalize, denoise;
+  cl::Buffer colorIn, depthIn, normalIn, roughnessIn, baseIn, specularIn;
+  bool hasBase = false;
   cl::Buffer hzb, levelBuffer, positions, normals, colorPyramid, pixelRays, rayList, tileList, rayCount;
+  cl::Buffer surfaceExtent, surfaceThickness;  // adaptive thickness: row runs and chords, then thickness
   cl::Buffer accRadiance, accWeight, resolvedRgba, resolvedDistance, outRgba, outDistance;
   cl::Buffer rayHit, rayRadiance;  // one batch of ray records; sized on first use
   int batchCapacity = 0;
@@ -105,7 +107,7 @@ Pipeline& Pipeline::operator=(Pipeline&&) noexcept = default;
 void Pipeline::setImage(const std::string& name, const Image& image) {
   if (std::find(kInputNames.begin(), kInputNames.end(), name) == kInputNames.end())
     throw Error(ErrorCode::InvalidArgument,
-                "unknown input image '" + name + "' (expected color, depth, normal or roughness)");
+                "unknown input image '" + name + "' (expected color, depth, normal, roughness, base or specular)");
   impl_->inputs[name] = &image;
   impl_->committed = false;
 }
@@ -115,6 +117,8 @@ void Pipeline::setGBuffer(const GBuffer& gbuffer) {
   setImage("depth", gbuffer.depth);
   setImage("normal", gbuffer.normal);
   if (!gbuffer.roughness.empty()) setImage("roughness", gbuffer.roughness);
+  if (!gbuffer.base.empty()) setImage("base", gbuffer.base);
+  if (!gbuffer.specular.empty()) setImage("specular", gbuffer.specular);
 }
 
 void Pipeline::setCamera(const Camera& camera) {
@@ -129,6 +133,14 @@ void Pipeline::Impl::validateSettings() const {
   const TraceSettings& s = settings;
   if (!(s.thicknessRelative > 0.0f) || !std::isfinite(s.thicknessRelative))
     throw Error(ErrorCode::InvalidArgument, "parameter thickness must be a positive number");
+  if (!(s.thicknessScale > 0.0f) || !std::isfinite(s.thicknessScale))
+    throw Error(ErrorCode::InvalidArgument, "parameter thickness-scale must be a positive number");
+  if (!(s.thicknessMinRelative > 0.0f && s.thicknessMinRelative <= s.thicknessMaxRelative) ||
+      !std::isfinite(s.thicknessMaxRelative))
+    throw Error(ErrorCode::InvalidArgument,
+                "parameters thickness-min and thickness-max must be positive numbers, min <= max");
+  if (!(s.glossyHitRoughness >= 0.0f && s.glossyHitRoughness <= 1.0f))
+    throw Error(ErrorCode::InvalidArgument, "parameter glossy-hit-roughness must be in [0, 1]");
   if (s.maxIterations < 1) throw Error(ErrorCode::InvalidArgument, "parameter max-iterations must be at least 1");
   if (!(s.maxRoughness >= 0.0f)) throw Error(ErrorCode::InvalidArgument, "parameter max-roughness must be >= 0");
   if (!(s.edgeFade >= 0.0f && s.edgeFade <= 0.5f))
@@ -158,12 +170,18 @@ void Pipeline::Impl::validate() {
   const TraceSettings& s = settings;
 
   const bool needRoughness = s.constantRoughness < 0.0f;
-  const std::array<int, 4> expectedChannels = {3, 1, 3, 1};
+  const std::array<int, 6> expectedChannels = {3, 1, 3, 1, 3, 3};
+  auto given = [&](const char* name) {
+    auto it = inputs.find(name);
+    return it != inputs.end() && !it->second->empty();
+  };
+  if (given("base") != given("specular"))
+    throw Error(ErrorCode::InvalidArgument, "pipeline: input images 'base' and 'specular' go together");
   for (size_t k = 0; k < kInputNames.size(); ++k) {
     const std::string name = kInputNames[k];
     auto it = inputs.find(name);
     if (it == inputs.end() || it->second->empty()) {
-      if (name == "roughness" && !needRoughness) continue;
+      if ((name == "roughness" && !needRoughness) || name == "base" || name == "specular") continue;
       throw Error(ErrorCode::InvalidArgument, "pipeline: input image '" + name + "' not set");
     }
     const Image& img = *it->second;
@@ -187,6 +205,7 @@ void Pipeline::Impl::allocate() {
   width = camera.width;
   height = camera.height;
   colorChannels = inputs.at("color")->channels;
+  hasBase = inputs.count("base") && !inputs.at("base")->empty();
   levels = hzbLevels(width, height);
   tilesX = (width + kTile - 1) / kTile;
   tilesY = (height + kTile - 1) / kTile;
@@ -196,6 +215,7 @@ void Pipeline::Impl::allocate() {
   setup = cl::Kernel(program, "setup");
   hzbReduce = cl::Kernel(program, "hzb_reduce");
   colorReduce = cl::Kernel(program, "color_reduce");
+  thickness = cl::Kernel(program, "surface_thickness");
   trace = cl::Kernel(program, "trace_rays");
   accumulate = cl::Kernel(program, "resolve_accumulate");
   finalize = cl::Kernel(program, "resolve_finalize");
@@ -213,6 +233,8 @@ void Pipeline::Impl::allocate() {
       {&depthIn, CL_MEM_READ_ONLY, pixels * sizeof(float)},
       {&normalIn, CL_MEM_READ_ONLY, pixels * 3 * sizeof(float)},
       {&roughnessIn, CL_MEM_READ_ONLY, pixels * sizeof(float)},
+      {&baseIn, CL_MEM_READ_ONLY, hasBase ? pixels * 3 * sizeof(float) : 4},
+      {&specularIn, CL_MEM_READ_ONLY, hasBase ? pixels * 3 * sizeof(float) : 4},
       {&hzb, CL_MEM_READ_WRITE, hzbSize * sizeof(float)},
       {&workCounters, CL_MEM_READ_WRITE, (kFetchSlots + kHistogramBins) * sizeof(cl_int)},
       {&positions, CL_MEM_READ_WRITE, pixels * sizeof(cl_float4)},
@@ -222,6 +244,8 @@ void Pipeline::Impl::allocate() {
       {&rayList, CL_MEM_READ_WRITE, pixels * sizeof(cl_int)},
       {&tileList, CL_MEM_READ_WRITE, size_t(tilesX) * tilesY * sizeof(cl_int)},
       {&rayCount, CL_MEM_READ_WRITE, kRayCounts * sizeof(cl_int)},
+      {&surfaceExtent, CL_MEM_READ_WRITE, pixels * sizeof(cl_float2)},
+      {&surfaceThickness, CL_MEM_READ_WRITE, pixels * sizeof(float)},
       {&accRadiance, CL_MEM_READ_WRITE, pixels * sizeof(cl_float4)},
       {&accWeight, CL_MEM_READ_WRITE, pixels * sizeof(cl_float2)},
       {&resolvedRgba, CL_MEM_READ_WRITE, pixels * sizeof(cl_float4)},
@@ -302,9 +326,10 @@ void Pipeline::Impl::run() {
   const cl_int tracer = s.tracer == Tracer::Linear ? 1 : s.tracer == Tracer::DDA ? 2 : 0;
   const cl_uint seed = s.seed;
   const int batch = batchSize();
-  // Each ray's cone covers its share of the lobe among all rays the resolve combines.
+  // Each ray's cone covers its share of the lobe among all N rays the resolve combines: a
+  // reflected GGX lobe spans about 2 alpha, so a share is a cone of half-angle 2 alpha / sqrt(N).
   const int reused = s.samplesPerPixel * (2 * s.reuseRadius + 1) * (2 * s.reuseRadius + 1);
-  const float coneScale = s.prefilter ? 1.0f / std::sqrt(float(reused)) : 0.0f;
+  const float coneScale = s.prefilter ? 2.0f / std::sqrt(float(reused)) : 0.0f;
 
   std::vector<cl::Event> uploads(4);
   const bool useRoughnessImage = s.constantRoughness < 0.0f;
@@ -320,6 +345,13 @@ void Pipeline::Impl::run() {
     q.enqueueFillBuffer(workCounters, cl_int(0), 0, (kFetchSlots + kHistogramBins) * sizeof(cl_int), nullptr,
                         &uploads.back());
   }
+  if (hasBase) {
+    for (const auto& [buffer, name] : {std::pair{&baseIn, "base"}, std::pair{&specularIn, "specular"}}) {
+      uploads.emplace_back();
+      q.enqueueWriteBuffer(*buffer, CL_FALSE, 0, pixels * 3 * sizeof(float), inputs.at(name)->data.data(), nullptr,
+                           &uploads.back());
+    }
+  }
   if (useRoughnessImage) {
     uploads.emplace_back();
     q.enqueueWriteBuffer(roughnessIn, CL_FALSE, 0, pixels * sizeof(float), inputs.at("roughness")->data.data(), nullptr,
@@ -329,8 +361,9 @@ void Pipeline::Impl::run() {
   // HZB level 0 and colour pyramid level 0 start at offset 0 of their buffers.
   setArgs(setup, size, nearPlane, farPlane, normalMatrix16, invProj, colorIn, colorChannels, depthIn, normalIn,
           roughnessIn, useRoughnessImage ? -1.0f : s.constantRoughness, s.maxRoughness, s.mirrorRoughness,
-          cl_int(s.samplesPerPixel), s.fullRaysRoughness, cl_int(s.traceStride), cl_int(s.classifyWork), positions, hzb,
-          normals, colorPyramid, pixelRays, rayList, tileList, rayCount);
+          cl_int(s.samplesPerPixel), s.fullRaysRoughness, cl_int(s.traceStride), cl_int(s.classifyWork),
+          s.thicknessRelative, cl_int(s.thicknessModel == ThicknessModel::Adaptive), positions, hzb, normals,
+          colorPyramid, pixelRays, rayList, tileList, rayCount, surfaceThickness);
   cl::Event setupEvent;
   q.enqueueNDRangeKernel(setup, cl::NullRange, global2d, local2d, nullptr, &setupEvent);
 
@@ -341,6 +374,17 @@ void Pipeline::Impl::run() {
     q.enqueueNDRangeKernel(hzbReduce, cl::NullRange, levelRange, local2d, nullptr, &hzbEvents[l - 1]);
     setArgs(colorReduce, colorPyramid, levelBuffer, static_cast<cl_int>(l));
     q.enqueueNDRangeKernel(colorReduce, cl::NullRange, levelRange, local2d, nullptr, &colorEvents[l - 1]);
+  }
+
+  std::vector<cl::Event> thicknessEvents;
+  if (s.thicknessModel == ThicknessModel::Adaptive) {
+    for (cl_int axis = 0; axis < 2; ++axis) {
+      setArgs(thickness, size, axis, positions, s.thicknessScale, s.thicknessMinRelative,
+              s.thicknessMaxRelative, surfaceExtent, surfaceThickness);
+      thicknessEvents.emplace_back();
+      q.enqueueNDRangeKernel(thickness, cl::NullRange, cl::NDRange(roundUp(axis ? width : height, 16)),
+                             cl::NDRange(16), nullptr, &thicknessEvents.back());
+    }
   }
 
   cl_int counts[kRayCounts] = {};  // listed pixels, rays, listed tiles, pixels with rays
@@ -355,8 +399,10 @@ void Pipeline::Impl::run() {
     if (listed > 0) {
       setArgs(trace, size, proj, invProj, nearPlane, farPlane, hzb, levelBuffer, static_cast<cl_int>(levels.size()),
               positions, normals, rayList, listed, pixelRays, cl_int(batch), cl_int(first), seed, s.mirrorRoughness,
-              mapping, coneScale, tracer, s.linearStepPixels, s.thicknessRelative, s.maxIterations, s.edgeFade,
-              cl_int(s.countWork), workCounters, colorPyramid, rayHit, rayRadiance);
+              mapping, coneScale, tracer, s.linearStepPixels, surfaceThickness, s.maxIterations, s.edgeFade,
+              cl_int(s.countWork), workCounters, colorPyramid, s.glossyHitRoughness,
+              cl_int(hasBase), baseIn,
+              specularIn, rayHit, rayRadiance);
       traceEvents.emplace_back();
       q.enqueueNDRangeKernel(trace, cl::NullRange, cl::NDRange(roundUp(size_t(listed) * batch, 64)), cl::NDRange(64),
                              nullptr, &traceEvents.back());
@@ -417,6 +463,7 @@ void Pipeline::Impl::run() {
   times.ms["setup"] = eventMs(setupEvent);
   times.ms["hzb"] = sum(hzbEvents);
   times.ms["color_mips"] = sum(colorEvents);
+  times.ms["thickness"] = sum(thicknessEvents);
   times.ms["trace"] = sum(traceEvents);
   times.ms["resolve"] = sum(resolveEvents);
   times.ms["denoise"] = s.denoise && tiles > 0 ? eventMs(denoiseEvent) : 0.0;

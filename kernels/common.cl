@@ -12,6 +12,18 @@
 #error "SSRCL_TEST_BREAK_BUILD is defined: this build fails on purpose"
 #endif
 
+// Radiance rule: NaN becomes 0, negatives 0, and values clamp at 1e20 so that weighted sums
+// in later stages cannot overflow float.
+#define SSRCL_MAX_RADIANCE 1e20f
+
+inline float sanitize_radiance(float v) {
+  return isnan(v) ? 0.0f : clamp(v, 0.0f, SSRCL_MAX_RADIANCE);
+}
+
+inline float3 sanitize_radiance3(float3 v) {
+  return (float3)(sanitize_radiance(v.x), sanitize_radiance(v.y), sanitize_radiance(v.z));
+}
+
 // One HZB level: offset into the packed mip buffer and its size.
 typedef struct {
   int offset;

@@ -11,16 +11,8 @@
 // pyramid bounds the surface everywhere in the pixel, not only at its centre: a grazing floor
 // is 10% nearer at a pixel's near edge than at its centre.
 
-// Radiance rule: NaN becomes 0, negatives 0, and values clamp at 1e20 so that weighted sums
-// in later stages cannot overflow float.
-#define SSRCL_MAX_RADIANCE 1e20f
-
 // Depth at and beyond which a pixel is background whatever the far plane (Cycles writes 1e10).
 #define SSRCL_BACKGROUND_DEPTH 1e10f
-
-inline float sanitize_radiance(float v) {
-  return isnan(v) ? 0.0f : clamp(v, 0.0f, SSRCL_MAX_RADIANCE);
-}
 
 // Glossy pixels' ray count: samples_per_pixel, or with full_rays_roughness > 0 a share of it in
 // proportion to roughness up to that roughness (at least one ray): narrow lobes see a small part of
@@ -39,11 +31,11 @@ __kernel void setup(int2 size, float near_plane, float far_plane, float16 normal
                     __global const float* normal_in,
                     __global const float* roughness_in, float constant_roughness,
                     float max_roughness, float mirror_roughness, int samples_per_pixel, float full_rays_roughness,
-                    int trace_stride, int classify,
+                    int trace_stride, int classify, float thickness_rel, int adaptive_thickness,
                     __global float4* position_out, __global float* hzb_out, __global float4* normal_out,
                     __global float4* color_out,
                     __global int* pixel_rays, __global int* ray_list, __global int* tile_list,
-                    __global int* ray_count) {
+                    __global int* ray_count, __global float* thickness_out) {
   __local int group_count, group_base, group_rays, group_traced, group_reflecting;
   int x = get_global_id(0), y = get_global_id(1);
   bool inside = x < size.x && y < size.y;
@@ -90,6 +82,11 @@ __kernel void setup(int2 size, float near_plane, float far_plane, float16 normal
     position_out[i] = surface ? (float4)(p, d) : (float4)(0.0f, 0.0f, 0.0f, SSRCL_NO_SURFACE);
     hzb_out[i] = surface ? nearest : SSRCL_NO_SURFACE;
     normal_out[i] = (float4)(nv, r);
+    // Thickness is a depth along the viewing line; hits measure it along the normal, which is the
+    // depth times |n.v| (near a silhouette a surface is thin along its normal however deep it is).
+    // The adaptive model's depth follows in kernels/thickness.cl.
+    float along_normal = fabs(dot(view_dir, nv));
+    thickness_out[i] = !surface ? 0.0f : adaptive_thickness ? along_normal : thickness_rel * d * along_normal;
     // Ray counts: 0 no reflection (sky, too rough), 1 mirror-like, -1 glossy but resolved from
     // its neighbours' rays only (strided tracing), else samples_per_pixel.
     // A normal facing away from the viewer (seen from behind) defines no reflection.

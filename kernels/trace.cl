@@ -64,7 +64,7 @@ typedef struct {
   int level_count;
   __global const float4* positions;
   __global const float4* normals;
-  float thickness_rel;
+  __global const float* thickness;  // per pixel, along its normal (setup.cl, thickness.cl)
   int max_iterations;
   int iterations;  // work done by this ray, for the counting mode
   int fetches;     // depth-buffer texels read (HZB texels, or a pixel's point and normal)
@@ -95,7 +95,7 @@ inline float hit_pixel(TraceScene* sc, const ScreenRay* ray, float3 dir, int2 ce
   *in_front = g_out > 0.0f;
   if (!(dot(n, dir) < 0.0f)) return -1.0f;
   if (g_in > 0.0f && g_out <= 0.0f) return t_in + (t_out - t_in) * (g_in / (g_in - g_out));
-  if (g_in <= 0.0f && -g_in / ray_q(ray, t_in).w <= sc->thickness_rel * pc.w) return t_in;
+  if (g_in <= 0.0f && -g_in / ray_q(ray, t_in).w <= sc->thickness[idx]) return t_in;
   return -1.0f;
 }
 
@@ -183,6 +183,36 @@ inline float trace_dda(TraceScene* sc, const ScreenRay* ray, float3 dir, int2* h
   return -1.0f;
 }
 
+// Traces from view-space point p along unit direction dir: the segment ends at the near plane for
+// rays toward the camera, at the far plane otherwise, capped so an infinite far plane still gives a
+// finite end. Returns the hit's t on *ray (negative on a miss) and the pixel hit in *cell.
+inline float trace_from(TraceScene* sc, float16 proj, float near_plane, float far_plane, int tracer,
+                        float linear_step, float3 p, float3 dir, ScreenRay* ray, int2* cell) {
+  float length_max = 1e6f * -p.z;
+  float len = dir.z > 0.0f ? (-near_plane * 1.001f - p.z) / dir.z
+            : dir.z < 0.0f ? (-far_plane - p.z) / dir.z : length_max;
+  len = fmin(len, length_max);
+  if (!(len > 0.0f)) return -1.0f;
+  if (!make_screen_ray(proj, sc->size, p, p + dir * len, ray)) return -1.0f;
+  if (!(fmax(fabs(ray->ds.x), fabs(ray->ds.y)) > 0.0f)) return -1.0f;
+  return tracer == 1   ? trace_linear(sc, ray, dir, linear_step, cell)
+         : tracer == 2 ? trace_dda(sc, ray, dir, cell)
+                       : trace_hiz(sc, ray, dir, cell);
+}
+
+// Direction a surface with normal n and GGX alpha reflects light arriving along `incoming`: the
+// mirror direction, or one visible-normal sample of its lobe. Zero when the sample points below it.
+inline float3 reflect_dir(float3 incoming, float3 n, bool mirror, float alpha, float2 u) {
+  float3 o = -incoming;
+  if (mirror) return 2.0f * dot(o, n) * n - o;
+  float3 tx, ty;
+  basis_from_normal(n, &tx, &ty);
+  float3 ol = (float3)(dot(o, tx), dot(o, ty), dot(o, n));
+  float3 h = ggx_sample_vndf(ol, alpha, u);
+  float3 ll = 2.0f * dot(ol, h) * h - ol;
+  return ll.z > 0.0f ? normalize(ll.x * tx + ll.y * ty + ll.z * n) : (float3)(0.0f);
+}
+
 // Counting mode: per-ray texel reads summed over 1024 slots (32-bit atomics that cannot
 // overflow on any frame size; the host adds them up in 64 bits), then a histogram of iterations
 // in power-of-two bins (bin b holds [2^(b-1), 2^b), bin 0 holds 0).
@@ -202,9 +232,10 @@ __kernel void trace_rays(int2 size, float16 proj, float16 inv_proj, float near_p
                          __global const int* ray_list, int listed,
                          __global const int* pixel_rays, int batch_size, int first_sample, uint seed,
                          float mirror_roughness, int roughness_mapping, float cone_scale, int tracer, float linear_step,
-                         float thickness_rel, int max_iterations, float edge_fade, int counting,
+                         __global const float* thickness, int max_iterations, float edge_fade, int counting,
                          __global int* work_counters,
-                         __global const float4* color_pyramid, __global float4* ray_hit,
+                         __global const float4* color_pyramid, float glossy_hit_roughness, int has_base,
+                         __global const float* base, __global const float* specular, __global float4* ray_hit,
                          __global float4* ray_radiance) {
   int gid = get_global_id(0);
   if (gid >= listed * batch_size) return;
@@ -243,25 +274,14 @@ __kernel void trace_rays(int2 size, float16 proj, float16 inv_proj, float near_p
   ray_hit[record] = (float4)(dir, -1.0f);
   ray_radiance[record] = (float4)(0.0f, 0.0f, 0.0f, pdf);
 
-  // Segment end: at the near plane for rays toward the camera, at the far plane otherwise,
-  // capped so an infinite far plane still gives a finite end point.
-  float depth = -p.z;
-  float length_max = 1e6f * depth;
-  float len = dir.z > 0.0f ? (-near_plane * 1.001f - p.z) / dir.z
-            : dir.z < 0.0f ? (-far_plane - p.z) / dir.z : length_max;
-  len = fmin(len, length_max);
-  if (!(len > 0.0f)) return;
+  TraceScene sc = {size, hzb, levels, level_count, positions, normals, thickness, max_iterations, 0, 0};
   ScreenRay ray;
-  if (!make_screen_ray(proj, size, p, p + dir * len, &ray)) return;
-  if (!(fmax(fabs(ray.ds.x), fabs(ray.ds.y)) > 0.0f)) return;
-
-  TraceScene sc = {size, hzb, levels, level_count, positions, normals, thickness_rel, max_iterations, 0, 0};
   int2 cell;  // the pixel whose surface the ray hit; its colour is the hit's colour
-  float t = tracer == 1   ? trace_linear(&sc, &ray, dir, linear_step, &cell)
-            : tracer == 2 ? trace_dda(&sc, &ray, dir, &cell)
-                          : trace_hiz(&sc, &ray, dir, &cell);
-  if (counting) count_work(work_counters, gid, &sc);
-  if (t < 0.0f) return;
+  float t = trace_from(&sc, proj, near_plane, far_plane, tracer, linear_step, p, dir, &ray, &cell);
+  if (t < 0.0f) {
+    if (counting) count_work(work_counters, gid, &sc);
+    return;
+  }
 
   float2 s = ray_screen(&ray, t);
   float3 hit = ray_point(&ray, t);
@@ -276,6 +296,30 @@ __kernel void trace_rays(int2 size, float16 proj, float16 inv_proj, float near_p
     cell = clamp(cell, (int2)(0, 0), size - 1);
     radiance = color_pyramid[cell.y * size.x + cell.x];
   }
+  // A hit on a glossy pixel: its screen colour is what it reflects toward the camera, not toward
+  // this pixel. With its non-reflected radiance known (`base`), the hit's radiance is that plus
+  // its specular colour times what one more ray, reflected at the hit, finds (black where that
+  // ray finds nothing, as a black environment). A pixel wrongly marked glossy (a material that
+  // writes no roughness reads 0) has specular colour 0 and keeps its base: its screen colour.
+  cell = clamp(cell, (int2)(0, 0), size - 1);
+  int q = cell.y * size.x + cell.x;
+  float4 nq = normals[q];
+  if (has_base && nq.w < glossy_hit_roughness) {
+    float alpha_q = fmax(roughness_to_alpha(nq.w, roughness_mapping), 1e-4f);
+    float3 dir2 = reflect_dir(dir, nq.xyz, nq.w <= mirror_roughness, alpha_q, sample_2d(q, sample, seed + 1u));
+    float3 second = (float3)(0.0f);
+    ScreenRay ray2;
+    int2 cell2;
+    float t2 = dot(dir2, dir2) > 0.0f
+                   ? trace_from(&sc, proj, near_plane, far_plane, tracer, linear_step, hit, dir2, &ray2, &cell2)
+                   : -1.0f;
+    if (t2 >= 0.0f) {
+      cell2 = clamp(cell2, (int2)(0, 0), size - 1);
+      second = color_pyramid[cell2.y * size.x + cell2.x].xyz * edge_confidence(ray_screen(&ray2, t2), size, edge_fade);
+    }
+    radiance.xyz = sanitize_radiance3(vload3(q, base) + vload3(q, specular) * second);
+  }
+  if (counting) count_work(work_counters, gid, &sc);
   ray_hit[record] = (float4)(hit, edge_confidence(s, size, edge_fade));
   ray_radiance[record] = (float4)(radiance.xyz, pdf);
 }

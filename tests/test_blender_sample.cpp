@@ -78,7 +78,7 @@ namespace {
 // against Cycles, see support/cycles_reference.hpp.
 TEST(BlenderSample, GlossyFloorMatchesCycles) {
   const auto ref =
-      ssrcl::test::loadCyclesFloorReference(std::string(SSRCL_SOURCE_DIR) + "/samples/blender/glossy/glossy.exr");
+      ssrcl::test::loadCyclesReference(std::string(SSRCL_SOURCE_DIR) + "/samples/blender/glossy/glossy.exr");
   ASSERT_GT(ref.groups.front().second.size(), 70000u);
   ASSERT_EQ(ref.groups.size(), 4u);  // the floor and its three stripes
   ssrcl::Device device = ssrcl::test::testDevice();
@@ -89,7 +89,7 @@ TEST(BlenderSample, GlossyFloorMatchesCycles) {
   auto run = [&](int spp) {
     p.settings().samplesPerPixel = spp;
     p.execute();
-    return ssrcl::test::floorError(ref, p.output("reflection"), ref.groups.front().second).rmse;
+    return ssrcl::test::referenceError(ref, p.output("reflection"), ref.groups.front().second).rmse;
   };
   const double medium = run(4), more = run(16);
   std::cout << "glossy floor RMSE vs Cycles: medium " << medium << ", 16 rays " << more << "\n";

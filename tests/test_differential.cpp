@@ -189,6 +189,7 @@ TEST(Differential, OpenClTracersAgreeWithTheCpuReference) {
       p.setCamera(rc.camera);
       p.settings().constantRoughness = 0.0f;
       p.settings().edgeFade = 0.0f;
+      p.settings().thicknessModel = ThicknessModel::Constant;  // the reference implements this model
       p.settings().tracer = pairs[k].tracer;
       // The full-resolution tracers visit every pixel: let them cross the whole screen, as the
       // reference does. Hi-Z keeps its default cap.

@@ -107,7 +107,7 @@ Action addBatchCommand(CLI::App& app) {
                   "disk)");
   cmd->add_option("--camera", o->request.camera,
                   "One camera JSON for all frames, or a pattern/{stem} template (default: <stem>.camera.json beside "
-                  "each frame)");
+                  "each frame, else the frame's EXR header camera)");
   cmd->add_option("--device", o->device, "OpenCL device: index from `ssrcl devices`, cpu, gpu or default");
   cmd->add_option("--shard", o->shard,
                   "K/N: process only share K (0-based) of N, e.g. $SLURM_ARRAY_TASK_ID/$SLURM_ARRAY_TASK_COUNT")

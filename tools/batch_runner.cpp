@@ -24,8 +24,7 @@ double secondsSince(Clock::time_point start) { return std::chrono::duration<doub
 struct FrameInFlight {
   size_t index = 0;
   FrameOutcome outcome;
-  GBuffer gbuffer;
-  Camera camera;
+  Frame frame;
   Image reflection, distance;
   bool deviceUnusable = false;  // no later frame can succeed either: stop rather than fail each
 };
@@ -104,8 +103,8 @@ BatchRun BatchRunner::run(const std::vector<FrameJob>& jobs, std::vector<FrameOu
         FrameInFlight f;
         f.index = todo[k];
         attempt(f, f.outcome.readSeconds, kExitUsage, [&] {
-          f.gbuffer = loadGBuffer(input_.sourceFor(jobs[f.index].input));
-          f.camera = loadCameraFor(jobs[f.index].camera, f.gbuffer);
+          const FrameJob& job = jobs[f.index];
+          f.frame = loadFrame(input_, job.input, job.camera, job.camera == sidecarCameraPath(job.input));
         });
         if (!read.push(std::move(f))) break;
       }
@@ -116,7 +115,7 @@ BatchRun BatchRunner::run(const std::vector<FrameJob>& jobs, std::vector<FrameOu
         attempt(*f, f->outcome.writeSeconds, kExitOutput, [&] {
           const std::filesystem::path parent = std::filesystem::path(jobs[f->index].output).parent_path();
           if (!parent.empty()) std::filesystem::create_directories(parent);
-          writeReflectionExr(jobs[f->index].output, f->reflection, f->distance);
+          writeReflectionExr(jobs[f->index].output, f->reflection, f->distance, f->frame.windows);
         });
         finish(*f);
       }
@@ -130,13 +129,13 @@ BatchRun BatchRunner::run(const std::vector<FrameJob>& jobs, std::vector<FrameOu
       continue;
     }
     const bool computedOk = attempt(*f, f->outcome.computeSeconds, kExitUsage, [&] {
-      setFrame(pipeline_, f->gbuffer, f->camera);
+      setFrame(pipeline_, f->frame);
       pipeline_.commit();
       pipeline_.execute();
       for (const auto& [stage, ms] : pipeline_.stageTimes().ms) f->outcome.deviceMs += ms;
       f->reflection = pipeline_.output("reflection");  // copies: the pipeline reuses its outputs
       f->distance = pipeline_.output("distance");
-      f->gbuffer = GBuffer{};
+      f->frame.gbuffer = GBuffer{};
     });
     if (!computedOk)
       finish(*f);

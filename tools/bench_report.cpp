@@ -110,7 +110,8 @@ void writeBenchJson(const std::string& path, const std::vector<BenchResult>& res
   writeText(path, j.dump(2) + "\n");
 }
 
-void writeBenchSvg(const std::string& path, const std::vector<BenchResult>& results, const std::string& device) {
+void writeBenchSvg(const std::string& path, const std::vector<BenchResult>& results, const std::string& device,
+                   const std::string& errorAxis) {
   std::vector<const BenchResult*> points;
   for (const BenchResult& r : results)
     if (r.hasError && r.error.rmse > 0 && r.stages.count("total")) points.push_back(&r);
@@ -158,7 +159,7 @@ void writeBenchSvg(const std::string& path, const std::vector<BenchResult>& resu
     }
   s << "<text x='" << (left + W - right) / 2 << "' y='" << H - 20 << "' text-anchor='middle'>device time per frame, ms "
     << "(median, log)</text>\n<text transform='translate(24," << (top + H - bottom) / 2
-    << ") rotate(-90)' text-anchor='middle'>RMSE against the reference preset (log)</text>\n";
+    << ") rotate(-90)' text-anchor='middle'>" << escapeXml(errorAxis) << "</text>\n";
   for (const auto& [input, c] : colour) {
     // Pareto front: points no other point beats in both time and error.
     std::vector<const BenchResult*> mine;

@@ -2,14 +2,32 @@
 
 #include <filesystem>
 
+#include "renderer_presets.hpp"
 #include "ssrcl/error.hpp"
 
 namespace ssrcl::cli {
+namespace {
+
+bool given(const CLI::Option* option) { return option && option->count() > 0; }
+
+std::string sizeText(int width, int height) { return std::to_string(width) + "x" + std::to_string(height); }
+
+}  // namespace
 
 GBufferSource GBufferInputOptions::sourceFor(const std::string& file) const {
   GBufferSource s = source;
   s.file = file;
   if (roughness >= 0.0f) s.constantRoughness = roughness;
+  const RendererPreset& preset = rendererPreset(renderer);
+  if (!given(layerOption)) s.layer = preset.layer;
+  if (!given(colorOption)) s.colorChannels = preset.colorChannels;
+  if (!given(depthOption)) s.depthChannel = preset.depthChannel;
+  if (!given(normalOption)) s.normalChannels = preset.normalChannels;
+  s.depthKind = depthKind.empty() ? preset.depthKind : depthKind == "radial" ? DepthKind::Radial : DepthKind::Planar;
+  s.normalSpace = normalSpace.empty() ? preset.normalSpace
+                  : normalSpace == "camera"    ? NormalSpace::Camera
+                  : normalSpace == "camera-gl" ? NormalSpace::CameraGL
+                                               : NormalSpace::World;
   return s;
 }
 
@@ -20,17 +38,37 @@ TraceSettings GBufferInputOptions::applyTo(TraceSettings settings) const {
 
 void addChannelOptions(CLI::App& cmd, GBufferInputOptions& o) {
   const char* in = "Input channels";
-  cmd.add_option("--layer", o.source.layer, "Layer prefix of the default channel names; \"\" for plain R,G,B / Z / N.X")
+  cmd.add_option("--renderer", o.renderer,
+                 "Channel names, depth kind, normal space of this renderer's passes (README, Input); each option "
+                 "below overrides its part")
       ->group(in)
+      ->check(CLI::IsMember(rendererNames()))
       ->capture_default_str();
-  cmd.add_option("--color-channels", o.source.colorChannels, "Color channel names, e.g. R,G,B")->group(in);
-  cmd.add_option("--depth-channel", o.source.depthChannel, "Depth channel name (planar view depth)")->group(in);
-  cmd.add_option("--normal-channels", o.source.normalChannels, "World-space normal channels, e.g. N.X,N.Y,N.Z")
+  o.layerOption =
+      cmd.add_option("--layer", o.source.layer, "Layer prefix of the default channel names; \"\" for plain R,G,B / Z / N.X")
+          ->group(in);
+  o.colorOption = cmd.add_option("--color-channels", o.source.colorChannels, "Color channel names, e.g. R,G,B")->group(in);
+  o.depthOption = cmd.add_option("--depth-channel", o.source.depthChannel, "Depth channel name")->group(in);
+  o.normalOption =
+      cmd.add_option("--normal-channels", o.source.normalChannels, "Normal channel names, e.g. N.X,N.Y,N.Z")->group(in);
+  cmd.add_option("--position", o.source.positionChannels,
+                 "World-position channels (e.g. P.X,P.Y,P.Z) to take depth from instead of a depth pass")
       ->group(in);
+  cmd.add_option("--depth-kind", o.depthKind,
+                 "planar: view depth along the camera axis (Blender); radial: distance along each pixel's ray")
+      ->group(in)
+      ->check(CLI::IsMember({"planar", "radial"}));
+  cmd.add_option("--normal-space", o.normalSpace,
+                 "world; camera: x right, y up, +z forward (OpenEXR/RenderMan); camera-gl: x right, y up, -z forward")
+      ->group(in)
+      ->check(CLI::IsMember({"world", "camera", "camera-gl"}));
   cmd.add_option("--roughness-channel", o.source.roughnessChannel, "Roughness channel name")->group(in);
   cmd.add_option("--roughness", o.roughness, "Constant roughness for every pixel instead of a channel")
       ->group(in)
       ->check(CLI::Range(0.0f, 1.0f));
+  cmd.add_flag("!--no-input-check", o.inputCheck,
+               "Trace even when the normal pass disagrees with the depth under the declared conventions")
+      ->group(in);
 }
 
 void addPassFileOptions(CLI::App& cmd, GBufferInputOptions& o) {
@@ -39,6 +77,8 @@ void addPassFileOptions(CLI::App& cmd, GBufferInputOptions& o) {
   cmd.add_option("--depth", o.source.depthFile, "Read depth from this EXR instead")->group(in);
   cmd.add_option("--normal", o.source.normalFile, "Read normals from this EXR instead")->group(in);
   cmd.add_option("--roughness-file", o.source.roughnessFile, "Read roughness from this EXR instead")->group(in);
+  cmd.add_option("--position-file", o.source.positionFile, "Read positions (--position) from this EXR instead")
+      ->group(in);
 }
 
 std::string sidecarCameraPath(const std::string& exr) {
@@ -46,18 +86,43 @@ std::string sidecarCameraPath(const std::string& exr) {
   return (p.parent_path() / (p.stem().string() + ".camera.json")).string();
 }
 
-Camera loadCameraFor(const std::string& path, const GBuffer& g) {
-  Camera camera = loadCameraJson(path);
-  if (camera.width != g.depth.width || camera.height != g.depth.height)
-    throw Error(ErrorCode::InvalidInput, path + ": camera is " + std::to_string(camera.width) + "x" +
-                                             std::to_string(camera.height) + " but the G-buffer is " +
-                                             std::to_string(g.depth.width) + "x" + std::to_string(g.depth.height));
-  return camera;
+Frame loadFrame(const GBufferInputOptions& o, const std::string& input, const std::string& cameraPath,
+                bool headerFallback) {
+  const GBufferSource source = o.sourceFor(input);
+  Frame frame;
+  GBuffer& g = frame.gbuffer;
+  g = loadGBuffer(source);
+
+  std::error_code ec;
+  const bool useHeader = headerFallback && !std::filesystem::exists(cameraPath, ec);
+  if (useHeader && !g.headerCamera)
+    throw Error(ErrorCode::InvalidInput,
+                cameraPath + ": no such camera file, and " +
+                    (source.positionFile.empty() && source.depthFile.empty() ? source.file
+                     : source.positionChannels.empty()                        ? source.depthFile
+                                                                              : source.positionFile) +
+                    " has no camera in its header (worldToCamera with worldToNDC or worldToScreen, or V-Ray's "
+                    "cameraTransform with cameraFov); give --camera");
+  if (useHeader && !g.headerCamera->problem.empty()) throw Error(ErrorCode::InvalidInput, g.headerCamera->problem);
+  const std::string cameraName = useHeader ? "the header camera (" + g.headerCamera->attributes + ")" : cameraPath;
+  const Camera display = useHeader ? g.headerCamera->camera : loadCameraJson(cameraPath);
+  if (display.width != g.displayWindow.width() || display.height != g.displayWindow.height())
+    throw Error(ErrorCode::InvalidInput, cameraName + ": camera is " + sizeText(display.width, display.height) +
+                                             " but the G-buffer's display window is " +
+                                             sizeText(g.displayWindow.width(), g.displayWindow.height()));
+
+  frame.windows = {g.dataWindow, g.displayWindow};
+  frame.camera = g.dataWindow == g.displayWindow ? display : reframeCamera(display, g.displayWindow, g.dataWindow);
+  if (o.inputCheck) checkInputConventions(g, source, frame.camera);
+  applyInputConventions(g, source, frame.camera);
+  if (useHeader && !g.headerCamera->clipPlanesKnown) fitClipPlanes(frame.camera, g.depth);
+  validateCamera(frame.camera, cameraName.c_str());
+  return frame;
 }
 
-void setFrame(Pipeline& pipeline, const GBuffer& g, const Camera& camera) {
-  pipeline.setGBuffer(g);
-  pipeline.setCamera(camera);
+void setFrame(Pipeline& pipeline, const Frame& frame) {
+  pipeline.setGBuffer(frame.gbuffer);
+  pipeline.setCamera(frame.camera);
 }
 
 }  // namespace ssrcl::cli

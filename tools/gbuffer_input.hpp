@@ -7,29 +7,47 @@
 
 namespace ssrcl::cli {
 
-// How `trace` and `batch` read one frame: where each pass and channel is, the camera sidecar
-// beside the EXR, and the checks that pair a camera with a G-buffer.
+// How `trace` and `batch` read one frame: where each pass and channel is, in which conventions
+// (a --renderer preset, then each option given alone), where the camera is, and the check
+// that the declared conventions fit the passes.
 struct GBufferInputOptions {
   GBufferSource source;     // layer, channel names and pass files; `file` is set per frame
   float roughness = -1.0f;  // >= 0: this roughness everywhere, no roughness channel read
+  std::string renderer = "blender";
+  std::string depthKind, normalSpace;  // empty: the renderer's
+  bool inputCheck = true;
+  // The options a preset must not override once given (set by addChannelOptions).
+  CLI::Option *layerOption = nullptr, *colorOption = nullptr, *depthOption = nullptr, *normalOption = nullptr;
 
   GBufferSource sourceFor(const std::string& file) const;
   // `settings` with the constant roughness applied, as the pipeline wants it.
   TraceSettings applyTo(TraceSettings settings) const;
 };
 
-// --layer, --color-channels, --depth-channel, --normal-channels, --roughness-channel, --roughness
+// --renderer, --layer, --*-channel(s), --position, --depth-kind, --normal-space, --roughness,
+// --no-input-check
 void addChannelOptions(CLI::App& cmd, GBufferInputOptions& o);
-// --color, --depth, --normal, --roughness-file: passes read from files of their own
+// --color, --depth, --normal, --roughness-file, --position-file: passes read from files of their own
 void addPassFileOptions(CLI::App& cmd, GBufferInputOptions& o);
 
 // shot.exr -> shot.camera.json beside it.
 std::string sidecarCameraPath(const std::string& exr);
 
-// The camera at `path`, checked against the G-buffer's size; Error(InvalidInput) names the file.
-Camera loadCameraFor(const std::string& path, const GBuffer& g);
+// A frame ready for the pipeline: planar depth, world normals, the camera of its data window.
+struct Frame {
+  GBuffer gbuffer;
+  Camera camera;
+  ExrWindows windows;  // the input's, for the output
+};
 
-// Gives the pipeline a frame's images and camera; `g` must stay alive until execute() is done.
-void setFrame(Pipeline& pipeline, const GBuffer& g, const Camera& camera);
+// Reads a frame's passes and its camera: the JSON at `cameraPath`, or, when that file does not
+// exist and `headerFallback` is set (it is the default sidecar), the camera in the EXR header.
+// The camera describes the display window; the frame covers the data window. Runs the input
+// check unless disabled, then converts to the pipeline's conventions. Errors name the file.
+Frame loadFrame(const GBufferInputOptions& o, const std::string& input, const std::string& cameraPath,
+                bool headerFallback);
+
+// Gives the pipeline a frame's images and camera; `frame` must stay alive until execute() is done.
+void setFrame(Pipeline& pipeline, const Frame& frame);
 
 }  // namespace ssrcl::cli

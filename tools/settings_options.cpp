@@ -8,7 +8,11 @@ TraceSettings SettingsOptions::resolve() const {
     if (value) field = *value;
   };
   apply(s.maxRoughness, maxRoughness);
-  apply(s.thicknessRelative, thickness);
+  if (thicknessModel) s.thicknessModel = *thicknessModel == "constant" ? ThicknessModel::Constant : ThicknessModel::Adaptive;
+  if (thickness) {  // an explicit thickness is a constant one
+    s.thicknessRelative = *thickness;
+    s.thicknessModel = ThicknessModel::Constant;
+  }
   apply(s.edgeFade, edgeFade);
   apply(s.mirrorRoughness, mirrorRoughness);
   apply(s.linearStepPixels, linearStep);
@@ -84,9 +88,15 @@ void addSettingsOptions(CLI::App& cmd, SettingsOptions& o) {
                  "GGX alpha = roughness^2 (squared, Cycles) or roughness (linear)")
       ->group(m)
       ->check(CLI::IsMember({"squared", "linear"}));
-  cmd.add_option("--thickness", o.thickness, "Surface thickness relative to its depth (default 0.002)")
+  auto* model = cmd.add_option("--thickness-model", o.thicknessModel,
+                 "adaptive (from each surface's visible extent, the default) or constant (--thickness of depth)")
       ->group(m)
-      ->check(CLI::Range(1e-6f, 10.0f));
+      ->check(CLI::IsMember({"adaptive", "constant"}));
+  cmd.add_option("--thickness", o.thickness,
+                 "Constant surface thickness relative to depth (e.g. 0.005); implies --thickness-model constant")
+      ->group(m)
+      ->check(CLI::Range(1e-6f, 10.0f))
+      ->excludes(model);
   cmd.add_option("--edge-fade", o.edgeFade, "Fraction of the screen over which A fades at its edges (default 0.05)")
       ->group(m)
       ->check(CLI::Range(0.0f, 0.5f));

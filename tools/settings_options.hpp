@@ -14,7 +14,7 @@ struct SettingsOptions {
   std::optional<float> maxRoughness, thickness, edgeFade, mirrorRoughness, linearStep, fullRaysRoughness;
   std::optional<int> maxIterations, spp, reuseRadius, traceStride;
   std::optional<uint32_t> seed;
-  std::optional<std::string> roughnessMapping, tracer;
+  std::optional<std::string> roughnessMapping, tracer, thicknessModel;
   std::optional<bool> prefilter, denoise;
 
   TraceSettings resolve() const;

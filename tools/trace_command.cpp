@@ -30,18 +30,18 @@ int runTrace(TraceOptions& o) {
   if (std::filesystem::equivalent(o.output, mainFile, ec))
     throw Error(ErrorCode::InvalidArgument, o.output + ": refusing to overwrite the input G-buffer");
 
-  GBuffer g = loadGBuffer(o.in.sourceFor(o.input));
-  Camera camera = loadCameraFor(cameraPath, g);
+  const Frame frame = loadFrame(o.in, o.input, cameraPath, o.camera.empty());
+  const Camera& camera = frame.camera;
 
   Device device = openDevice(o.device);
   Pipeline pipeline(device);
-  setFrame(pipeline, g, camera);
+  setFrame(pipeline, frame);
   pipeline.settings() = o.in.applyTo(o.settings.resolve());
   pipeline.commit();
   pipeline.execute();
 
   try {
-    writeReflectionExr(o.output, pipeline.output("reflection"), pipeline.output("distance"));
+    writeReflectionExr(o.output, pipeline.output("reflection"), pipeline.output("distance"), frame.windows);
   } catch (const Error& e) {
     std::cerr << "ssrcl: " << e.what() << "\n";
     return kExitOutput;
@@ -66,7 +66,7 @@ Action addTraceCommand(CLI::App& app) {
   cmd->add_option("input", o->input, "G-buffer EXR (Blender multilayer by default)");
   cmd->add_option("-o,--output", o->output, "Output EXR: R,G,B,A (premultiplied, A = confidence), distance")
       ->required();
-  cmd->add_option("--camera", o->camera, "Camera JSON (default: <input stem>.camera.json beside the input)");
+  cmd->add_option("--camera", o->camera, "Camera JSON (default: <input stem>.camera.json beside the input, else the EXR header's camera)");
   cmd->add_option("--device", o->device, "OpenCL device: index from `ssrcl devices`, cpu, gpu or default");
   addChannelOptions(*cmd, o->in);
   addPassFileOptions(*cmd, o->in);

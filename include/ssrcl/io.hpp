@@ -1,11 +1,27 @@
 #pragma once
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "ssrcl/camera.hpp"
 #include "ssrcl/image.hpp"
 
 namespace ssrcl {
+
+// What the depth pass holds (see README, Input):
+//   Planar  positive view-space depth along the camera axis (Blender's Depth.Z)
+//   Radial  distance from the camera centre along the pixel's ray (for an orthographic camera,
+//           from the image plane: the same as planar)
+enum class DepthKind { Planar, Radial };
+
+// The space of the normal pass:
+//   World     world space (Blender, Arnold)
+//   Camera    OpenEXR/RenderMan camera space: x right, y up, +z the viewing direction (left-handed)
+//   CameraGL  x right, y up, -z the viewing direction (right-handed, OpenGL's eye space)
+enum class NormalSpace { World, Camera, CameraGL };
+
+const char* depthKindName(DepthKind kind);        // "planar", "radial": the --depth-kind values
+const char* normalSpaceName(NormalSpace space);  // "world", "camera", "camera-gl"
 
 // Where each G-buffer pass comes from. File fields left empty use `file`. Channel names are full
 // EXR names; empty means the default built from `layer` (Blender multilayer naming):
@@ -22,19 +38,84 @@ struct GBufferSource {
   std::string normalChannels;  // comma-separated "X,Y,Z" form
   std::string roughnessChannel;
   std::optional<float> constantRoughness;  // when set, no roughness channel is read
+
+  // Non-empty: world-space positions ("P.X,P.Y,P.Z" form) are read instead of the depth pass and
+  // give its planar depth; (0,0,0) and non-finite positions mean "no surface".
+  std::string positionChannels;
+  std::string positionFile;
+  DepthKind depthKind = DepthKind::Planar;
+  NormalSpace normalSpace = NormalSpace::World;
+};
+
+// The camera an EXR header describes, for its display window: OpenEXR's standard worldToCamera
+// with worldToNDC (or worldToScreen, read in RenderMan's default screen window), or V-Ray's
+// cameraTransform with cameraFov. Near/far come from the header where it has them (V-Ray's clip
+// attributes); otherwise `clipPlanesKnown` is false and fitClipPlanes sets them from the depth.
+struct HeaderCamera {
+  Camera camera;
+  bool clipPlanesKnown = false;
+  std::string attributes;  // which attributes it came from, for messages
+  // Non-empty when the header has camera attributes that cannot be used: why (naming the file and
+  // attribute). Only an error when the header camera is needed (no sidecar, no --camera).
+  std::string problem;
 };
 
 struct GBuffer {
   Image color;      // 3 channels
-  Image depth;      // 1 channel, planar view depth
-  Image normal;     // 3 channels, world space
+  Image depth;      // 1 channel: as declared until applyInputConventions, then planar view depth
+  Image normal;     // 3 channels: as declared until applyInputConventions, then world space
   Image roughness;  // 1 channel; empty when constantRoughness was given
+  // Optional, for hits on glossy surfaces (TraceSettings::glossyHitRoughness): radiance without
+  // the specular reflection, and the specular colour, 3 channels each.
+  Image base, specular;
+  Image position;   // 3 channels, world space; only when positionChannels was given
+  // The EXR windows of the depth (or position) pass's file: the images cover the data window;
+  // a camera describes the display window.
+  PixelBox dataWindow, displayWindow;
+  // The camera in that file's header, when it has camera attributes.
+  std::optional<HeaderCamera> headerCamera;
 };
 
-// Reads and checks every pass (half or float, any compression, single- or multi-part).
+// Reads and checks every pass (half or float, any compression, single- or multi-part), as stored:
+// depth and normals in the conventions `source` declares (applyInputConventions converts them).
 // Throws Error(IoError) for unreadable files and Error(InvalidInput) for missing channels or
 // mismatched sizes; the message starts with the file name and names the channel.
 GBuffer loadGBuffer(const GBufferSource& source);
+
+// Turns the passes into the pipeline's conventions: planar depth (from radial depth, or from
+// positions) and world-space normals. `camera` is the camera of the G-buffer's pixels (its data
+// window). Pixels with no surface stay without one. Run it once: it converts what `source`
+// declares, whatever the images already hold.
+void applyInputConventions(GBuffer& gbuffer, const GBufferSource& source, const Camera& camera);
+
+// The check run before tracing: normals derived from the depth (or positions) are compared,
+// over the frame, with the normal pass read under the declared conventions and under the others
+// (radial/planar depth, each normal space, one flipped axis). `gbuffer` is as loaded (not yet
+// converted), `camera` that of its data window. Throws Error(InvalidInput) with a one-line
+// message naming the pass and the option that fixes it when another reading explains the passes
+// clearly better, or when none explains them (a camera that does not match). Returns the
+// statistics otherwise.
+struct ConventionFit {
+  std::string depth, normals;   // a reading: depth ("planar", "radial", "position") and normals
+  double meanAngleDegrees = 0;  // mean angle between pass normals and depth-derived normals
+  // Against the declared reading, summed over the frame: how much closer the pass normals are to
+  // this reading, as a share of how far apart the two readings put them (-1 .. 1; above 0.5 the
+  // check prefers this reading).
+  double score = 0;
+};
+struct InputCheckReport {
+  ConventionFit declared;
+  ConventionFit best;       // the smallest mean angle
+  ConventionFit preferred;  // the reading the check prefers (the declared one when it passes)
+  std::vector<ConventionFit> readings;  // every reading tried, the declared one included
+  long long comparedPixels = 0;  // of the sampling grid (at most 65536 pixels) where both normals exist
+};
+InputCheckReport checkInputConventions(const GBuffer& gbuffer, const GBufferSource& source, const Camera& camera);
+
+
+// Near = half the nearest surface in `planarDepth` (no surface lost), far = infinity; the
+// projection's depth row is rebuilt to match (OpenGL layout).
+void fitClipPlanes(Camera& camera, const Image& planarDepth);
 
 // Camera sidecar: {"view": 4x4 row-major world->camera, "projection": 4x4 row-major OpenGL clip,
 // "width": W, "height": H, optional "near", "far"}. Validated; errors name the file and field.
@@ -44,6 +125,12 @@ void saveCameraJson(const std::string& path, const Camera& camera);
 // Writes the reflection pass (R,G,B,A from rgba, plus "distance") as float EXR with ZIP
 // compression, through a temporary file in the same directory renamed over `path`, so a failure
 // leaves any existing file untouched. Throws Error(IoError).
-void writeReflectionExr(const std::string& path, const Image& rgba, const Image& distance);
+// `windows` (data, display) are written as given, so an overscan or crop render's pass lines up
+// with it; the data window must be the images' size. Default: both 0,0 - width-1,height-1.
+struct ExrWindows {
+  PixelBox data, display;
+};
+void writeReflectionExr(const std::string& path, const Image& rgba, const Image& distance,
+                        const std::optional<ExrWindows>& windows = std::nullopt);
 
 }  // namespace ssrcl

@@ -18,6 +18,12 @@ enum class Tracer {
   DDA,     // every pixel the ray crosses, in order (McGuire and Mara 2014)
 };
 
+// How far behind a pixel's surface a ray may pass and still hit it (see thicknessRelative).
+enum class ThicknessModel {
+  Adaptive,  // per pixel, from the visible extent of its surface (kernels/thickness.cl)
+  Constant,  // thicknessRelative of every pixel's depth
+};
+
 enum class RoughnessMapping {
   Squared,  // GGX alpha = roughness^2 (Cycles, EEVEE, Unreal, most renderers)
   Linear,   // alpha = roughness
@@ -35,13 +41,26 @@ enum class RoughnessMapping {
 struct TraceSettings {
   // Each pixel's surface is the plane through its point with its normal; rays crossing it hit.
   // A ray already behind a surface where it reaches it (at a silhouette) still hits when it is
-  // less than this far behind, along the normal, relative to the surface's depth (scale-aware:
-  // 0.002 = 0.2% of the depth). Thicker: fewer holes, more streaks; thinner: the reverse.
+  // less than the surface's thickness behind it, along the normal. Thicker: fewer holes, more
+  // streaks; thinner: the reverse. Adaptive: thicknessScale times the view-space extent of the
+  // pixel's surface (its unbroken run of pixels along the row and the column, the shorter), kept
+  // within [thicknessMinRelative, thicknessMaxRelative] of its depth. Constant: thicknessRelative
+  // of its depth (0.002 = 0.2%). Defaults chosen on the Cycles corpus (docs/BENCHMARKS.md).
+  ThicknessModel thicknessModel = ThicknessModel::Adaptive;
   float thicknessRelative = 0.002f;
+  float thicknessScale = 0.75f;
+  float thicknessMinRelative = 0.002f;
+  float thicknessMaxRelative = 0.08f;
   int maxIterations = 512;          // Hi-Z traversal steps per ray before it gives up
   float maxRoughness = 1.0f;        // pixels rougher than this get no ray and A = 0
   float edgeFade = 0.05f;           // fraction of the screen's smaller side over which A fades out
   float constantRoughness = -1.0f;  // >= 0 overrides the roughness image
+
+  // Hits on pixels smoother than this are hits on glossy surfaces, whose screen colour is what
+  // they reflect toward the camera. With the "base" and "specular" images set, such a hit's
+  // radiance is base + specular * (what one more ray reflected at the hit finds); without them,
+  // or at 0, hits take the screen colour. Corpus (mirror_panels): +1.2 dB.
+  float glossyHitRoughness = 0.5f;
 
   int samplesPerPixel = 4;  // rays per glossy pixel
   // > 0: ray counts follow roughness. Glossy pixels at or above this roughness get samplesPerPixel
@@ -52,7 +71,9 @@ struct TraceSettings {
   RoughnessMapping roughnessMapping = RoughnessMapping::Squared;
   float mirrorRoughness = 0.02f;  // at or below: one deterministic mirror ray, no reuse
   int reuseRadius = 2;            // resolve reuses rays of (2r+1)^2 neighbours (Stachowiak); 0 = own only
-  bool prefilter = false;         // rough hits read a color mip matched to the ray's cone footprint
+  // Rough hits read a colour mip matched to the ray's share of the lobe: small bright emitters
+  // then light many rays a little instead of a few rays a lot (speckle). Corpus: +0.8 dB mean.
+  bool prefilter = true;
   Tracer tracer = Tracer::HiZ;
   float linearStepPixels = 0.5f;  // Tracer::Linear step along the ray's major screen axis
   bool denoise = false;           // edge-aware spatial filter after the resolve
@@ -98,7 +119,9 @@ struct StageTimes {
 //   const Image& dist = p.output("distance");   // view-space hit distance, 0 where no hit
 // Input images: color 3 or 4 channels (only RGB used), depth 1 (planar view depth, values beyond
 // the far plane or not finite mean "no surface"), normal 3 (world space), roughness 1 (optional
-// when settings().constantRoughness >= 0).
+// when settings().constantRoughness >= 0). Optional, together: base 3 (each pixel's radiance
+// without its specular reflection, e.g. Combined minus Glossy) and specular 3 (its specular
+// colour), for hits on glossy surfaces (TraceSettings::glossyHitRoughness).
 class Pipeline {
  public:
   explicit Pipeline(const Device& device);

@@ -1,6 +1,9 @@
-"""Write the ssrcl camera sidecar JSON for a Blender scene camera.
+"""Write the ssrcl camera sidecar JSON for a Blender scene camera (perspective or orthographic).
 
 Standalone:  blender -b scene.blend --python export_camera.py -- out.camera.json
+Animation:   blender -b scene.blend --python export_camera.py -- 'shot.####.camera.json' --frames 1-240
+             (one sidecar per frame, '#'s replaced by the zero-padded frame number, so that
+             shot.1001.exr finds shot.1001.camera.json; ranges as ssrcl batch: 1-240, 1-240x2, 1,5,9)
 As a module: import export_camera; export_camera.write_camera_json(path, scene)
 
 JSON layout (what ssrcl::loadCameraJson reads):
@@ -26,9 +29,9 @@ def camera_dict(scene=None, camera=None):
     camera = camera or scene.camera
     if camera is None or camera.type != 'CAMERA':
         raise RuntimeError("scene has no camera object")
-    if camera.data.type != 'PERSP':
-        # ssrcl unprojects with a perspective clip matrix; ortho/panoramic would need other maths.
-        raise RuntimeError("only perspective cameras are supported, got %s" % camera.data.type)
+    if camera.data.type not in ('PERSP', 'ORTHO'):
+        # A panoramic camera has no clip matrix: its rays are not straight lines on screen.
+        raise RuntimeError("only perspective and orthographic cameras are supported, got %s" % camera.data.type)
 
     render = scene.render
     scale = render.resolution_percentage / 100.0
@@ -39,7 +42,8 @@ def camera_dict(scene=None, camera=None):
     cam_eval = camera.evaluated_get(depsgraph)
     # calc_matrix_camera goes through the same viewplane code the renderer uses
     # (BKE_camera_params_compute_viewplane): sensor fit, lens shift and pixel aspect are included,
-    # and the result is a glFrustum-style matrix built from clip_start/clip_end.
+    # and the result is a glFrustum-style (or, for ORTHO, glOrtho-style) matrix built from
+    # clip_start/clip_end, which ssrcl reads by its last row.
     projection = cam_eval.calc_matrix_camera(
         depsgraph, x=width, y=height,
         scale_x=render.pixel_aspect_x, scale_y=render.pixel_aspect_y)
@@ -78,11 +82,53 @@ def _argv_after_dashes():
     return sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
 
 
+def parse_frames(text):
+    """'1-240', '1-240x2', '1,5,10-20' -> sorted frame numbers."""
+    frames = set()
+    for part in text.split(","):
+        span, _, step = part.partition("x")
+        first, _, last = span.partition("-")
+        first, last, step = int(first), int(last or first), int(step or 1)
+        if last < first or step < 1:
+            raise ValueError("bad frame range '%s'" % part)
+        frames.update(range(first, last + 1, step))
+    return sorted(frames)
+
+
+def frame_path(pattern, frame):
+    """Replaces the run of '#' in `pattern` by `frame`, zero-padded to the run's length."""
+    start = pattern.find("#")
+    if start < 0:
+        raise ValueError("'%s' has no '#' run for the frame number" % pattern)
+    end = start
+    while end < len(pattern) and pattern[end] == "#":
+        end += 1
+    return pattern[:start] + str(frame).zfill(end - start) + pattern[end:]
+
+
+def main(args):
+    usage = ("usage: blender -b scene.blend --python export_camera.py -- out.camera.json\n"
+             "       blender -b scene.blend --python export_camera.py -- 'shot.####.camera.json' --frames 1-240")
+    if len(args) == 1:
+        write_camera_json(args[0])
+        print("wrote", args[0])
+        return 0
+    if len(args) == 3 and args[1] == "--frames":
+        try:
+            frames = parse_frames(args[2])
+            paths = [frame_path(args[0], f) for f in frames]
+        except ValueError as e:
+            print("export_camera.py: %s" % e, file=sys.stderr)
+            return 2
+        scene = bpy.context.scene
+        for frame, path in zip(frames, paths):
+            scene.frame_set(frame)  # evaluates animation, so the depsgraph holds this frame's camera
+            write_camera_json(path, scene)
+        print("wrote %d sidecars: %s ... %s" % (len(paths), paths[0], paths[-1]))
+        return 0
+    print(usage, file=sys.stderr)
+    return 2
+
+
 if __name__ == "__main__":
-    args = _argv_after_dashes()
-    if len(args) != 1:
-        print("usage: blender -b scene.blend --python export_camera.py -- out.camera.json",
-              file=sys.stderr)
-        sys.exit(2)
-    write_camera_json(args[0])
-    print("wrote", args[0])
+    sys.exit(main(_argv_after_dashes()))

@@ -67,6 +67,7 @@ struct Surfaces {
   std::vector<bool> valid;
   std::vector<dvec3> point, normal;
   std::vector<double> depth;
+  std::vector<double> viewCos;  // |n . v|, v the unit viewing direction of the pixel's centre
   int index(int x, int y) const { return y * camera.width + x; }
 };
 
@@ -78,7 +79,7 @@ std::vector<CpuRay> cpuMirrorTrace(const Camera& camera, const Image& depth, con
   const size_t n = size_t(w) * h;
   const glm::dmat3 normalMatrix = glm::inverseTranspose(glm::dmat3(camera.view));
   Surfaces sf{camera, std::vector<bool>(n, false), std::vector<dvec3>(n), std::vector<dvec3>(n),
-              std::vector<double>(n, 0.0)};
+              std::vector<double>(n, 0.0), std::vector<double>(n, 0.0)};
   std::vector<bool> normalOk(n, false);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
@@ -92,6 +93,9 @@ std::vector<CpuRay> cpuMirrorTrace(const Camera& camera, const Image& depth, con
       normalOk[i] = std::isfinite(len) && len > 0;
       // An unusable normal leaves the pixel's plane facing the camera.
       sf.normal[i] = normalOk[i] ? nv / len : dvec3(0, 0, 1);
+      const dvec2 centre(x + 0.5, y + 0.5);
+      const dvec3 view = glm::normalize(pointAtDepth(camera, centre, 2.0) - pointAtDepth(camera, centre, 1.0));
+      sf.viewCos[i] = std::abs(glm::dot(view, sf.normal[i]));
     }
 
   std::vector<CpuRay> rays(n);
@@ -133,7 +137,8 @@ std::vector<CpuRay> cpuMirrorTrace(const Camera& camera, const Image& depth, con
         double tHit = -1;
         if (g0 > 0 && g1 <= 0) {
           tHit = t0 + (t1 - t0) * (g0 / (g0 - g1));
-        } else if (g0 <= 0 && -g0 / (seg.q0.w + t0 * seg.dq.w) <= options.thicknessRelative * sf.depth[q]) {
+        } else if (g0 <= 0 &&
+                   -g0 / (seg.q0.w + t0 * seg.dq.w) <= options.thicknessRelative * sf.depth[q] * sf.viewCos[q]) {
           tHit = t0;
         }
         if (tHit < 0) return false;

@@ -15,9 +15,10 @@
 //     A segment with an end behind the camera is not traced.
 //   * Leaving its own pixel first, the ray is tested against each pixel's plane over the stretch
 //     of the ray assigned to that pixel: it hits where it crosses the plane from the front, or
-//     where it is behind the plane by at most thickness * that pixel's depth along the normal at
-//     the start of the stretch; planes facing away from the ray (n . dir >= 0) are never hit,
-//     sky pixels never.
+//     where it is behind the plane by at most thickness * that pixel's depth along its viewing
+//     line (along the normal: that times |n . v|, v the pixel centre's viewing direction) at the
+//     start of the stretch; planes facing away from the ray (n . dir >= 0) are never hit, sky
+//     pixels never.
 //   * Stretches: EveryPixel gives each pixel the ray crosses exactly its own stretch, in order
 //     (the limit of infinitely fine linear steps); Linear takes fixed steps of `linearStepPixels`
 //     along the major screen axis and tests each step against the pixel it ends in, as the
@@ -34,7 +35,7 @@ struct CpuTraceOptions {
   enum class Stepping { EveryPixel, Linear };
   Stepping stepping = Stepping::EveryPixel;
   double linearStepPixels = 0.5;
-  double thicknessRelative = 0.002;  // TraceSettings::thicknessRelative
+  double thicknessRelative = 0.002;  // TraceSettings::thicknessRelative (ThicknessModel::Constant)
 };
 
 struct CpuRay {

@@ -5,6 +5,9 @@
 #include <filesystem>
 #include <glm/glm.hpp>
 #include <map>
+#include <stdexcept>
+
+#include "support/exr_fixtures.hpp"
 
 namespace ssrcl::test {
 namespace {
@@ -42,18 +45,50 @@ double directionalAlbedoSeparable(double cosO, double alpha) {
   return sum / (n * n);
 }
 
-CyclesFloorReference loadCyclesFloorReference(const std::string& exr, const std::string& cameraJson, double specular) {
-  CyclesFloorReference ref;
+namespace {
+
+// E on a grid of roughness (1/64 steps, alpha = roughness^2) and cos(theta_o) (1/256 steps),
+// filled a roughness row at a time as pixels need it, read bilinearly: corpus frames hold tens of
+// thousands of distinct (roughness, angle) pairs. The bundled samples' stripes lie on the grid.
+class AlbedoTable {
+ public:
+  double operator()(double roughness, double cosO) {
+    const double r = std::clamp(roughness, 0.0, 1.0) * kRoughSteps, c = std::clamp(cosO, 0.0, 1.0) * kCosSteps;
+    const int r0 = std::min(int(r), kRoughSteps - 1), c0 = std::min(int(c), kCosSteps - 1);
+    const double fr = r - r0, fc = c - c0;
+    const std::vector<double>& a = row(r0);
+    const std::vector<double>& b = row(r0 + 1);
+    const double lo = a[c0] + fc * (a[c0 + 1] - a[c0]), hi = b[c0] + fc * (b[c0 + 1] - b[c0]);
+    return lo + fr * (hi - lo);
+  }
+
+ private:
+  static constexpr int kRoughSteps = 64, kCosSteps = 256;
+  const std::vector<double>& row(int r) {
+    std::vector<double>& values = rows_[r];
+    if (values.empty()) {
+      const double rough = double(r) / kRoughSteps;
+      for (int c = 0; c <= kCosSteps; ++c)  // cos 0 is the grazing limit: nudge it inside
+        values.push_back(directionalAlbedoSeparable(std::max(double(c) / kCosSteps, 1e-4), rough * rough));
+    }
+    return values;
+  }
+  std::map<int, std::vector<double>> rows_;
+};
+
+}  // namespace
+
+CyclesReference loadCyclesReference(const std::string& exr, const std::string& cameraJson, double specular) {
+  CyclesReference ref;
   GBufferSource source;
   source.file = exr;
   ref.gbuffer = loadGBuffer(source);
-  auto pass = [&](const std::string& name) {
-    GBufferSource s = source;
-    s.colorChannels = "ViewLayer." + name + ".R,ViewLayer." + name + ".G,ViewLayer." + name + ".B";
-    s.constantRoughness = 0.0f;
-    return loadGBuffer(s).color;
+  const ExrContents passes = readExr(exr);
+  auto channel = [&](const std::string& name) -> const std::vector<float>& {
+    auto it = passes.channels.find("ViewLayer." + name);
+    if (it == passes.channels.end()) throw std::runtime_error(exr + ": no channel ViewLayer." + name);
+    return it->second.values;
   };
-  const Image glossDir = pass("GlossDir"), glossInd = pass("GlossInd"), glossCol = pass("GlossCol");
   std::filesystem::path p(exr);
   ref.camera = loadCameraJson(cameraJson.empty() ? (p.parent_path() / (p.stem().string() + ".camera.json")).string()
                                                  : cameraJson);
@@ -61,57 +96,93 @@ CyclesFloorReference loadCyclesFloorReference(const std::string& exr, const std:
   const int w = g.depth.width, h = g.depth.height;
   const glm::dmat4 invViewProj = glm::inverse(ref.camera.projection * ref.camera.view);
   const glm::dvec3 eye = glm::dvec3(glm::inverse(ref.camera.view)[3]);
+  const bool indexed = passes.channels.count("ViewLayer.IndexOB.X") > 0;
+  const std::vector<float>& glossCol = channel("GlossCol.R");
+  const std::vector<float>* index = indexed ? &channel("IndexOB.X") : nullptr;
+  std::vector<const std::vector<float>*> gloss;
+  for (const char* pass : {"GlossDir.", "GlossInd."})
+    for (const char* c : {"R", "G", "B"}) gloss.push_back(&channel(std::string(pass) + c));
 
-  // Floor: upward world normal (Blender is Z-up), a surface, glossy or mirror, and Cycles' glossy
-  // colour 1 (0 or fractional on object edges).
-  std::map<std::pair<float, int>, double> albedoCache;  // on (roughness, n.o in 1/512 steps)
+  ref.base = Image(w, h, 3);
+  ref.specular = Image(w, h, 3);
+  for (int c = 0; c < 3; ++c) {
+    const std::vector<float>& col = channel(std::string("GlossCol.") + "RGB"[c]);
+    for (int i = 0; i < w * h; ++i) {
+      ref.specular.data[3 * i + c] = col[i];
+      ref.base.data[3 * i + c] = g.color.data[3 * i + c] - col[i] * ((*gloss[c])[i] + (*gloss[3 + c])[i]);
+    }
+  }
+
+  AlbedoTable albedo;
   std::map<float, std::vector<size_t>> byRoughness;
+  std::vector<double> values;
   for (int i = 0; i < w * h; ++i) {
-    if (!(g.normal.data[3 * i + 2] > 0.999f && g.depth.data[i] < 1e9f && g.roughness.data[i] < 0.9f &&
-          glossCol.data[3 * i] > 0.999f))
-      continue;
+    const glm::dvec3 n(g.normal.data[3 * i], g.normal.data[3 * i + 1], g.normal.data[3 * i + 2]);
+    const bool surface = g.depth.data[i] < 1e9f && glm::length(n) > 0.5;
+    const bool reflector = indexed ? (*index)[i] == 1.0f
+                                   : n.z > 0.999 && g.roughness.data[i] < 0.9f && glossCol[i] > 0.999f;
+    if (!surface || !reflector) continue;
     const int x = i % w, y = i / w;
     const glm::dvec4 q = invViewProj * glm::dvec4(2.0 * (x + 0.5) / w - 1.0, 1.0 - 2.0 * (y + 0.5) / h, 0.0, 1.0);
     const glm::dvec3 toEye = glm::normalize(eye - glm::dvec3(q) / q.w);
-    const int bin = std::clamp(int(toEye.z * 512), 1, 512);  // n = +Z on the floor
-    const float rough = g.roughness.data[i];
-    auto it = albedoCache.find({rough, bin});
-    if (it == albedoCache.end())
-      it = albedoCache
-               .emplace(std::make_pair(rough, bin),
-                        directionalAlbedoSeparable((bin - 0.5) / 512.0, double(rough) * rough))
-               .first;
-    byRoughness[rough].push_back(ref.floor.size());
-    ref.floor.push_back(i);
-    ref.scale.push_back(specular * it->second);
+    const float rough = std::clamp(g.roughness.data[i], 0.0f, 1.0f);
+    if (!indexed) byRoughness[rough].push_back(ref.pixels.size());
+    ref.pixels.push_back(i);
+    ref.scale.push_back(specular * albedo(rough, glm::dot(glm::normalize(n), toEye)));
     for (int c = 0; c < 3; ++c) {
-      ref.cycles.push_back(glossDir.data[3 * i + c] + glossInd.data[3 * i + c]);
-      ref.peak = std::max(ref.peak, ref.cycles.back());
+      ref.cycles.push_back((*gloss[c])[i] + (*gloss[3 + c])[i]);
+      values.push_back(ref.cycles.back());
     }
   }
-  // Stripes only: pixels on a boundary between two roughnesses hold blends.
+  if (values.empty()) throw std::runtime_error(exr + ": no reflector pixels");
+  std::sort(values.begin(), values.end());
+  ref.peak = values[std::min(values.size() - 1, size_t(0.999 * values.size()))];
+
   std::vector<size_t> all;
-  for (auto& [rough, ks] : byRoughness)
-    if (ks.size() > 1000) {
-      ref.groups.push_back({"r=" + std::to_string(rough).substr(0, 6), ks});
-      all.insert(all.end(), ks.begin(), ks.end());
-    }
-  std::sort(all.begin(), all.end());
-  ref.groups.insert(ref.groups.begin(), {"floor", all});
+  for (size_t k = 0; k < ref.pixels.size(); ++k) all.push_back(k);
+  if (!indexed) {
+    // Stripes only: pixels on a boundary between two roughnesses hold blends.
+    all.clear();
+    for (auto& [rough, ks] : byRoughness)
+      if (ks.size() > 1000) {
+        ref.groups.push_back({"r=" + std::to_string(rough).substr(0, 6), ks});
+        all.insert(all.end(), ks.begin(), ks.end());
+      }
+    std::sort(all.begin(), all.end());
+  }
+  ref.groups.insert(ref.groups.begin(), {"all", all});
   return ref;
 }
 
-FloorError floorError(const CyclesFloorReference& ref, const Image& reflection, const std::vector<size_t>& group) {
-  double se = 0, abs = 0;
-  for (size_t k : group)
+ReferenceError referenceError(const CyclesReference& ref, const Image& reflection, const std::vector<size_t>& group) {
+  double se = 0, seLow = 0, abs = 0;
+  std::vector<double> perPixel;
+  perPixel.reserve(group.size());
+  for (size_t k : group) {
+    const size_t i = size_t(ref.pixels[k]);
+    double pixelSe = 0, pixelAbs = 0;
     for (int c = 0; c < 3; ++c) {
-      const double ours = ref.scale[k] * reflection.data[4 * size_t(ref.floor[k]) + c];
+      const double ours = ref.scale[k] * reflection.data[reflection.channels * i + c];
       const double diff = ours - ref.cycles[3 * k + c];
-      se += diff * diff;
-      abs += std::abs(diff);
+      pixelSe += diff * diff;
+      pixelAbs += std::abs(diff);
     }
+    se += pixelSe;
+    abs += pixelAbs;
+    if (reflection.channels == 4 && reflection.data[4 * i + 3] < 0.5f) seLow += pixelSe;
+    perPixel.push_back(pixelAbs / 3);
+  }
   const double n = 3.0 * std::max<size_t>(group.size(), 1);
-  return {std::sqrt(se / n), abs / n};
+  ReferenceError e;
+  e.rmse = std::sqrt(se / n);
+  e.meanAbs = abs / n;
+  e.psnr = 20 * std::log10(ref.peak / std::max(e.rmse, 1e-30));
+  e.lowConfidence = se > 0 ? seLow / se : 0;
+  if (!perPixel.empty()) {
+    std::nth_element(perPixel.begin(), perPixel.begin() + perPixel.size() * 99 / 100, perPixel.end());
+    e.p99 = perPixel[perPixel.size() * 99 / 100] / ref.peak;
+  }
+  return e;
 }
 
 }  // namespace ssrcl::test

@@ -1,10 +1,11 @@
 #pragma once
-// Cycles' path-traced answer for the floor of a Blender sample (samples/blender), in the units of
-// our reflection pass. Cycles' Glossy Direct + Indirect on a floor of F0 = `specular` is
+// Cycles' path-traced answer for the reflecting surfaces of a Blender render (samples/blender,
+// samples/corpus), in the units of our reflection pass. Cycles' Glossy Direct + Indirect on a
+// metal of F0 = `specular` is
 //   specular * E(o, alpha) * (lobe-weighted mean incident radiance),
 // E being GGX's directional albedo with the separable Smith term Cycles 3.4 uses, while our pass
-// holds that mean times the found fraction A and nothing for the rest. The glossy sample's sky is
-// invisible to glossy rays, so the rest is black there too and every floor pixel compares.
+// holds that mean times the found fraction A and nothing for the rest. The renders make whatever
+// lies off screen black to glossy rays, so the rest is black there too and every pixel compares.
 #include <string>
 #include <utility>
 #include <vector>
@@ -15,26 +16,35 @@
 
 namespace ssrcl::test {
 
-struct CyclesFloorReference {
+struct CyclesReference {
   GBuffer gbuffer;
+  // Combined minus Glossy Color x (Glossy Direct + Indirect), and Glossy Color: what
+  // GBuffer::base and GBuffer::specular take from a Cycles render (left empty in `gbuffer`).
+  Image base, specular;
   Camera camera;
-  std::vector<int> floor;      // pixel indices: upward normal, a surface, Cycles' glossy colour 1
-  std::vector<double> scale;   // per floor pixel: specular * E, what turns our rgb into Cycles'
-  std::vector<double> cycles;  // per floor pixel, 3 channels: GlossDir + GlossInd
-  double peak = 0;             // brightest Cycles channel on the floor
-  // "floor" (every roughness stripe of more than 1000 pixels), then each stripe ("r=0.2500").
+  std::vector<int> pixels;     // the reflector's pixel indices (see loadCyclesReference)
+  std::vector<double> scale;   // per pixel: specular * E, what turns our rgb into Cycles'
+  std::vector<double> cycles;  // per pixel, 3 channels: GlossDir + GlossInd
+  double peak = 0;             // 99.9th percentile of those channels: the PSNR peak
+  // "all" first; for renders without an object index, then each roughness of more than 1000
+  // pixels ("r=0.2500").
   std::vector<std::pair<std::string, std::vector<size_t>>> groups;
 };
 
-// Reads the sample and its camera sidecar (<stem>.camera.json beside it unless given).
-CyclesFloorReference loadCyclesFloorReference(const std::string& exr, const std::string& cameraJson = {},
-                                              double specular = 1.0);
+// Reads the render and its camera sidecar (<stem>.camera.json beside it unless given). The
+// reflector is the pixels of object index 1 (IndexOB pass) where the render has one; else the
+// bundled samples' floor: upward normal, roughness below 0.9, Cycles' glossy colour 1.
+CyclesReference loadCyclesReference(const std::string& exr, const std::string& cameraJson = {},
+                                    double specular = 1.0);
 
-// RMSE and mean |error| of specular * E * our rgb against Cycles over a group's floor pixels.
-struct FloorError {
+// Error of specular * E * our rgb against Cycles over a group of reference pixels.
+struct ReferenceError {
   double rmse = 0, meanAbs = 0;
+  double psnr = 0;             // dB, peak = ref.peak
+  double lowConfidence = 0;    // share of the squared error on pixels with A < 0.5
+  double p99 = 0;              // 99th percentile of per-pixel mean |error|, relative to the peak
 };
-FloorError floorError(const CyclesFloorReference& ref, const Image& reflection, const std::vector<size_t>& group);
+ReferenceError referenceError(const CyclesReference& ref, const Image& reflection, const std::vector<size_t>& group);
 
 // E(o) of single-scatter GGX with separable Smith shadowing, for cos(theta_o) and alpha.
 double directionalAlbedoSeparable(double cosO, double alpha);

@@ -42,7 +42,7 @@ std::vector<char> encode(const ExrChannel& channel) {
 
 void writeMultiPartExr(const std::string& path, int width, int height, const std::vector<ExrPart>& parts,
                        const ExrOptions& options) {
-  const Imath::Box2i display({0, 0}, {width - 1, height - 1});
+  const Imath::Box2i display = options.displayWindow.value_or(Imath::Box2i({0, 0}, {width - 1, height - 1}));
   const Imath::Box2i data({options.originX, options.originY},
                           {options.originX + width - 1, options.originY + height - 1});
   std::vector<Imf::Header> headers;
@@ -50,6 +50,7 @@ void writeMultiPartExr(const std::string& path, int width, int height, const std
     Imf::Header header(display, data);
     header.compression() = options.compression;
     if (!part.name.empty()) header.setName(part.name);
+    if (options.editHeader) options.editHeader(header);
     header.setType(options.tiled ? Imf::TILEDIMAGE : Imf::SCANLINEIMAGE);
     if (options.tiled) header.setTileDescription(Imf::TileDescription(options.tileSize, options.tileSize));
     for (const ExrChannel& channel : part.channels) header.channels().insert(channel.name, Imf::Channel(channel.type));
@@ -90,6 +91,8 @@ ExrContents readExr(const std::string& path) {
   contents.width = window.max.x - window.min.x + 1;
   contents.height = window.max.y - window.min.y + 1;
   contents.compression = file.header().compression();
+  contents.dataWindow = window;
+  contents.displayWindow = file.header().displayWindow();
   Imf::FrameBuffer buffer;
   for (auto it = file.header().channels().begin(); it != file.header().channels().end(); ++it) {
     ExrChannel& channel = contents.channels[it.name()];

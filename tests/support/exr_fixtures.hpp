@@ -1,8 +1,12 @@
 #pragma once
+#include <Imath/ImathBox.h>
 #include <OpenEXR/ImfCompression.h>
+#include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfPixelType.h>
 
+#include <functional>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,7 +29,9 @@ struct ExrOptions {
   Imf::Compression compression = Imf::ZIP_COMPRESSION;
   bool tiled = false;
   int tileSize = 4;              // square tiles, one level
-  int originX = 0, originY = 0;  // data window origin; the display window stays at (0, 0)
+  int originX = 0, originY = 0;  // data window origin; the display window stays at (0, 0)...
+  std::optional<Imath::Box2i> displayWindow;      // ...unless given here
+  std::function<void(Imf::Header&)> editHeader;  // adds attributes (cameras) to each part's header
 };
 
 // A single-part file, with no part name, as most renderers write it.
@@ -38,6 +44,7 @@ void writeMultiPartExr(const std::string& path, int width, int height, const std
 // Everything in a single-part file, read as float, with the stored type of each channel.
 struct ExrContents {
   int width = 0, height = 0;
+  Imath::Box2i dataWindow, displayWindow;
   Imf::Compression compression = Imf::NO_COMPRESSION;
   std::map<std::string, ExrChannel> channels;
 };

@@ -1,0 +1,309 @@
+// Scores configurations of ssrcl against Cycles' path-traced glossy passes over a corpus of
+// scenes (samples/corpus) and prints one table: per scene PSNR, then the means over the tuning
+// scenes, the held-out scenes and all, with time, the share of squared error on low-confidence
+// pixels and the 99th percentile of per-pixel error (speckle). See tests/support/cycles_reference.hpp
+// for what is compared with what, and scripts/score-corpus.sh for the command.
+//
+//   ssrcl_score_corpus --corpus samples/corpus [--configs medium,high,...] [--scenes a,b] [--json out.json]
+//
+// A configuration is a preset name, optionally with settings after a colon:
+//   medium   high:spp=32   medium:thickness=0.01   medium:model=constant,thickness=0.005
+// Keys: thickness (constant), model (adaptive|constant), scale, tmin, tmax (adaptive),
+// hits (bounce, the default: hits on glossy pixels continue, with the render's glossy passes;
+// screen: they take the screen colour),
+// hitroughness, spp, reuse, denoise, prefilter, tracer, step, seed,
+// stride, iterations. "eevee" scores Blender EEVEE's own SSR (<scene>.eevee.exr) where it exists.
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "bench_report.hpp"
+#include "ssrcl/ssrcl.hpp"
+#include "support/cycles_reference.hpp"
+#include "support/exr_fixtures.hpp"
+
+namespace {
+
+struct Scene {
+  std::string name, split, path;
+};
+
+struct Config {
+  std::string label;
+  bool eevee = false;
+  bool glossyPasses = true;  // base and specular from the render's glossy passes, as `ssrcl trace` reads them
+  ssrcl::TraceSettings settings;
+};
+
+std::vector<std::string> splitList(const std::string& s, char sep) {
+  std::vector<std::string> out;
+  std::stringstream in(s);
+  for (std::string item; std::getline(in, item, sep);)
+    if (!item.empty()) out.push_back(item);
+  return out;
+}
+
+Config parseConfig(const std::string& spec) {
+  Config c{spec};
+  const auto colon = spec.find(':');
+  const std::string preset = spec.substr(0, colon);
+  if (preset == "eevee") {
+    c.eevee = true;
+    return c;
+  }
+  c.settings = ssrcl::qualityPreset(preset);
+  if (colon == std::string::npos) return c;
+  for (const std::string& kv : splitList(spec.substr(colon + 1), ',')) {
+    const auto eq = kv.find('=');
+    if (eq == std::string::npos) throw std::runtime_error("configuration '" + spec + "': expected key=value");
+    const std::string key = kv.substr(0, eq), value = kv.substr(eq + 1);
+    ssrcl::TraceSettings& s = c.settings;
+    if (key == "thickness") {
+      s.thicknessRelative = std::stof(value);
+      s.thicknessModel = ssrcl::ThicknessModel::Constant;
+    } else if (key == "model") {
+      s.thicknessModel = value == "constant" ? ssrcl::ThicknessModel::Constant : ssrcl::ThicknessModel::Adaptive;
+    } else if (key == "scale") {
+      s.thicknessScale = std::stof(value);
+    } else if (key == "tmin") {
+      s.thicknessMinRelative = std::stof(value);
+    } else if (key == "tmax") {
+      s.thicknessMaxRelative = std::stof(value);
+    } else if (key == "hits") {  // screen | bounce: how hits on glossy pixels are shaded
+      c.glossyPasses = value == "bounce";
+    } else if (key == "hitroughness") {
+      s.glossyHitRoughness = std::stof(value);
+    } else if (key == "spp") {
+      s.samplesPerPixel = std::stoi(value);
+    } else if (key == "reuse") {
+      s.reuseRadius = std::stoi(value);
+    } else if (key == "denoise") {
+      s.denoise = value == "1";
+    } else if (key == "prefilter") {
+      s.prefilter = value == "1";
+    } else if (key == "tracer") {
+      s.tracer = value == "linear" ? ssrcl::Tracer::Linear : value == "dda" ? ssrcl::Tracer::DDA : ssrcl::Tracer::HiZ;
+      if (s.tracer != ssrcl::Tracer::HiZ) s.maxIterations = ssrcl::qualityPreset("reference").maxIterations;
+    } else if (key == "step") {
+      s.linearStepPixels = std::stof(value);
+    } else if (key == "seed") {
+      s.seed = std::stoul(value);
+    } else if (key == "stride") {
+      s.traceStride = std::stoi(value);
+    } else if (key == "iterations") {
+      s.maxIterations = std::stoi(value);
+    } else {
+      throw std::runtime_error("configuration '" + spec + "': unknown key '" + key + "'");
+    }
+  }
+  return c;
+}
+
+std::vector<Scene> loadScenes(const std::string& corpus, const std::vector<std::string>& only) {
+  std::ifstream in(corpus + "/corpus.json");
+  if (!in) throw std::runtime_error(corpus + "/corpus.json: cannot read");
+  const nlohmann::json manifest = nlohmann::json::parse(in);
+  std::vector<Scene> scenes;
+  for (const auto& s : manifest.at("scenes")) {
+    const std::string name = s.at("name");
+    if (!only.empty() && std::find(only.begin(), only.end(), name) == only.end()) continue;
+    scenes.push_back({name, s.at("split"), corpus + "/" + name + ".exr"});
+  }
+  return scenes;
+}
+
+// EEVEE's Specular Light pass is the same quantity as ours with A = 1 everywhere it rendered.
+ssrcl::Image eeveePass(const std::string& path) {
+  const ssrcl::test::ExrContents exr = ssrcl::test::readExr(path);
+  ssrcl::Image img(exr.width, exr.height, 3);
+  const char* names[] = {"ViewLayer.GlossDir.R", "ViewLayer.GlossDir.G", "ViewLayer.GlossDir.B"};
+  for (int c = 0; c < 3; ++c) {
+    auto it = exr.channels.find(names[c]);
+    if (it == exr.channels.end()) throw std::runtime_error(path + ": no channel " + names[c]);
+    for (size_t i = 0; i < it->second.values.size(); ++i) img.data[3 * i + c] = it->second.values[i];
+  }
+  return img;
+}
+
+// Ours (times E), Cycles, |difference| (each divided by the peak), our confidence A and the input
+// colour side by side, sRGB-ish gamma: a binary PPM to see where a configuration's error is.
+void writeComparison(const std::string& path, const ssrcl::test::CyclesReference& ref, const ssrcl::Image& pass) {
+  const int w = ref.gbuffer.depth.width, h = ref.gbuffer.depth.height;
+  constexpr int kPanels = 5;
+  std::vector<unsigned char> rgb(size_t(kPanels * w) * h * 3, 0);
+  auto put = [&](int panel, int i, int c, double v) {
+    const double g = std::pow(std::clamp(v, 0.0, 1.0), 1 / 2.2);
+    rgb[(size_t(i / w) * kPanels * w + panel * w + i % w) * 3 + c] = static_cast<unsigned char>(255 * g + 0.5);
+  };
+  for (int i = 0; i < w * h; ++i)
+    for (int c = 0; c < 3; ++c) put(4, i, c, ref.gbuffer.color.data[3 * size_t(i) + c]);
+  for (size_t k = 0; k < ref.pixels.size(); ++k)
+    for (int c = 0; c < 3; ++c) {
+      const double ours = ref.scale[k] * pass.data[pass.channels * size_t(ref.pixels[k]) + c];
+      const double cycles = ref.cycles[3 * k + c];
+      put(0, ref.pixels[k], c, ours / ref.peak);
+      put(1, ref.pixels[k], c, cycles / ref.peak);
+      put(2, ref.pixels[k], c, std::abs(ours - cycles) / ref.peak);
+      if (pass.channels == 4) put(3, ref.pixels[k], c, pass.data[4 * size_t(ref.pixels[k]) + 3]);
+    }
+  std::ofstream f(path, std::ios::binary);
+  f << "P6\n" << kPanels * w << " " << h << "\n255\n";
+  f.write(reinterpret_cast<const char*>(rgb.data()), std::streamsize(rgb.size()));
+}
+
+struct Score {
+  bool present = false;
+  double ms = 0;
+  ssrcl::test::ReferenceError error;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Scores ssrcl configurations against Cycles over a corpus of scenes"};
+  std::string corpus = std::string(SSRCL_SOURCE_DIR) + "/samples/corpus", jsonPath, plotPath;
+  std::string configList = "draft,medium,high,reference,eevee", sceneList;
+  std::string dumpDir;
+  int repetitions = 1;
+  app.add_option("--corpus", corpus, "Directory with corpus.json and the scenes")->capture_default_str();
+  app.add_option("--configs", configList, "Comma-separated configurations (';' also separates)")->capture_default_str();
+  app.add_option("--scenes", sceneList, "Only these scenes (comma-separated)");
+  app.add_option("--repetitions", repetitions, "Timed runs per configuration (the minimum is reported)");
+  app.add_option("--json", jsonPath, "Write every figure as JSON");
+  app.add_option("--plot", plotPath, "Write the corpus mean error against time as SVG");
+  app.add_option("--dump", dumpDir, "Write <scene>.<config index>.ppm: ours, Cycles and |difference| side by side");
+  CLI11_PARSE(app, argc, argv);
+
+  try {
+    // Configurations with settings hold commas: ';' separates them when any does.
+    std::vector<Config> configs;
+    for (const std::string& spec : splitList(configList, configList.find(';') != std::string::npos ? ';' : ','))
+      configs.push_back(parseConfig(spec));
+    const std::vector<Scene> scenes = loadScenes(corpus, splitList(sceneList, ','));
+    if (scenes.empty()) throw std::runtime_error("no scenes selected");
+
+    ssrcl::Device device(ssrcl::DeviceType::Default);
+    std::vector<std::vector<Score>> scores(configs.size(), std::vector<Score>(scenes.size()));
+    for (size_t s = 0; s < scenes.size(); ++s) {
+      const ssrcl::test::CyclesReference ref = ssrcl::test::loadCyclesReference(scenes[s].path);
+      const auto& all = ref.groups.front().second;
+      ssrcl::Pipeline pipeline(device);
+      pipeline.setGBuffer(ref.gbuffer);
+      pipeline.setCamera(ref.camera);
+      for (size_t c = 0; c < configs.size(); ++c) {
+        Score& score = scores[c][s];
+        if (configs[c].eevee) {
+          const std::string path = corpus + "/" + scenes[s].name + ".eevee.exr";
+          if (!std::filesystem::exists(path)) continue;
+          score.error = ssrcl::test::referenceError(ref, eeveePass(path), all);
+          score.present = true;
+          continue;
+        }
+        const ssrcl::Image none;
+        pipeline.setImage("base", configs[c].glossyPasses ? ref.base : none);
+        pipeline.setImage("specular", configs[c].glossyPasses ? ref.specular : none);
+        pipeline.settings() = configs[c].settings;
+        pipeline.commit();
+        score.ms = INFINITY;
+        for (int r = 0; r < std::max(1, repetitions); ++r) {
+          pipeline.execute();
+          double ms = 0;
+          for (const auto& [stage, t] : pipeline.stageTimes().ms) ms += t;
+          score.ms = std::min(score.ms, ms);
+        }
+        score.error = ssrcl::test::referenceError(ref, pipeline.output("reflection"), all);
+        score.present = true;
+        if (!dumpDir.empty())
+          writeComparison(dumpDir + "/" + scenes[s].name + "." + std::to_string(c) + ".ppm", ref,
+                          pipeline.output("reflection"));
+      }
+      std::cerr << "scored " << scenes[s].name << " (" << all.size() << " reflector pixels)\n";
+    }
+
+    // Table 1: PSNR per scene. Table 2: means per split, time, low-confidence share, p99.
+    size_t labelWidth = 10;
+    for (const Config& c : configs) labelWidth = std::max(labelWidth, c.label.size() + 2);
+    std::cout << "device: " << device.info().name << "\nPSNR (dB) against Cycles, peak = 99.9th percentile\n"
+              << std::left << std::setw(labelWidth) << "config" << std::right;
+    for (const Scene& s : scenes) std::cout << std::setw(std::max<size_t>(8, s.name.size() + 1)) << s.name;
+    std::cout << "\n" << std::fixed << std::setprecision(2);
+    for (size_t c = 0; c < configs.size(); ++c) {
+      std::cout << std::left << std::setw(labelWidth) << configs[c].label << std::right;
+      for (size_t s = 0; s < scenes.size(); ++s) {
+        std::cout << std::setw(std::max<size_t>(8, scenes[s].name.size() + 1));
+        if (scores[c][s].present)
+          std::cout << scores[c][s].error.psnr;
+        else
+          std::cout << "-";
+      }
+      std::cout << "\n";
+    }
+    std::cout << "\nmeans over scenes (tune / holdout / all); ms = device time per frame; low-A = share of squared "
+                 "error on pixels with A < 0.5; p99 = 99th percentile per-pixel error, % of peak\n"
+              << std::left << std::setw(labelWidth) << "config" << std::right << std::setw(9) << "ms" << std::setw(9)
+              << "tune" << std::setw(9) << "holdout" << std::setw(9) << "all" << std::setw(9) << "low-A"
+              << std::setw(9) << "p99" << "\n";
+    nlohmann::json json;
+    std::vector<ssrcl::cli::BenchResult> points;
+    for (size_t c = 0; c < configs.size(); ++c) {
+      std::map<std::string, std::pair<double, int>> psnr;
+      double ms = 0, low = 0, p99 = 0, rmseRel = 0;
+      int n = 0;
+      for (size_t s = 0; s < scenes.size(); ++s) {
+        const Score& sc = scores[c][s];
+        if (!sc.present) continue;
+        for (const std::string& split : {scenes[s].split, std::string("all")}) {
+          psnr[split].first += sc.error.psnr;
+          psnr[split].second += 1;
+        }
+        ms += sc.ms, low += sc.error.lowConfidence, p99 += sc.error.p99, rmseRel += std::pow(10.0, -sc.error.psnr / 20);
+        ++n;
+        json["scores"].push_back({{"config", configs[c].label},
+                                  {"scene", scenes[s].name},
+                                  {"split", scenes[s].split},
+                                  {"ms", sc.ms},
+                                  {"psnr_db", sc.error.psnr},
+                                  {"rmse", sc.error.rmse},
+                                  {"low_confidence_share", sc.error.lowConfidence},
+                                  {"p99_relative", sc.error.p99}});
+      }
+      if (!n) continue;
+      auto mean = [&](const std::string& split) {
+        auto it = psnr.find(split);
+        std::ostringstream o;
+        o << std::fixed << std::setprecision(2);
+        if (it == psnr.end()) return std::string("-");
+        o << it->second.first / it->second.second;
+        return o.str();
+      };
+      std::cout << std::left << std::setw(labelWidth) << configs[c].label << std::right << std::setprecision(0)
+                << std::setw(9) << ms / n << std::setw(9) << mean("tune") << std::setw(9) << mean("holdout")
+                << std::setw(9) << mean("all") << std::setprecision(3) << std::setw(9) << low / n << std::setprecision(2)
+                << std::setw(9) << 100 * p99 / n << "\n";
+      if (!configs[c].eevee) {
+        ssrcl::cli::BenchResult point;
+        point.input = "corpus mean (" + std::to_string(n) + " scenes)";
+        point.config = configs[c].label;
+        point.stages["total"].medianMs = ms / n;
+        point.hasError = true;
+        point.error.rmse = rmseRel / n;
+        points.push_back(point);
+      }
+    }
+    if (!jsonPath.empty()) {
+      std::ofstream(jsonPath) << json.dump(2) << "\n";
+    }
+    if (!plotPath.empty())
+      ssrcl::cli::writeBenchSvg(plotPath, points, device.info().name, "RMSE / peak against Cycles, corpus mean (log)");
+  } catch (const std::exception& e) {
+    std::cerr << "ssrcl_score_corpus: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,35 @@
+// Clip planes for cameras whose file does not give them (OpenEXR's header matrices discard z).
+#include <algorithm>
+#include <cmath>
+
+#include "conventions.hpp"
+#include "ssrcl/camera.hpp"
+#include "ssrcl/io.hpp"
+
+namespace ssrcl {
+
+void setClipPlanes(Camera& camera, double n, double f) {
+  const bool perspective = camera.projection[2][3] != 0.0;  // last row 0,0,-1,0
+  camera.nearPlane = n;
+  camera.farPlane = f;
+  const double rowFar = perspective || std::isfinite(f) ? f : 1e10;
+  glm::dmat4& p = camera.projection;
+  p[0][2] = p[1][2] = 0.0;
+  if (perspective) {
+    p[2][2] = std::isinf(rowFar) ? -1.0 : -(rowFar + n) / (rowFar - n);
+    p[3][2] = std::isinf(rowFar) ? -2.0 * n : -2.0 * rowFar * n / (rowFar - n);
+  } else {
+    p[2][2] = -2.0 / (rowFar - n);
+    p[3][2] = -(rowFar + n) / (rowFar - n);
+  }
+}
+
+// Half the nearest surface: no surface is clipped, and rays are clipped well before the camera.
+void fitClipPlanes(Camera& camera, const Image& planarDepth) {
+  float nearest = INFINITY;
+  for (float d : planarDepth.data)
+    if (detail::isSurfaceDepth(d)) nearest = std::min(nearest, d);
+  setClipPlanes(camera, std::isfinite(nearest) ? 0.5 * nearest : 1.0, INFINITY);
+}
+
+}  // namespace ssrcl

@@ -1,0 +1,25 @@
+#pragma once
+// Per-pass convention conversions, shared by applyInputConventions and the input check.
+#include <glm/mat3x3.hpp>
+#include <glm/vec3.hpp>
+
+#include "ssrcl/camera.hpp"
+#include "ssrcl/image.hpp"
+#include "ssrcl/io.hpp"
+
+namespace ssrcl::detail {
+
+// Depth values that mean a surface: finite, positive, below Cycles' 1e10 background.
+inline bool isSurfaceDepth(float depth) { return depth > 0.0f && depth < 1e10f; }
+
+// Planar depth from distances along each pixel's ray; values that mean no surface are kept.
+Image planarFromRadial(const Image& radial, const Camera& camera);
+// Planar depth from world positions; (0,0,0) and non-finite positions become 1e10 (no surface).
+Image planarFromPositions(const Image& positions, const Camera& camera);
+
+// A normal of `space` in OpenGL eye space (x right, y up, -z forward), the check's common ground.
+glm::dvec3 normalToEye(const glm::dvec3& normal, NormalSpace space, const glm::dmat3& worldToEye);
+// World-space normals from normals of `space`; zero and non-finite normals stay what they are.
+Image worldNormals(const Image& normals, NormalSpace space, const Camera& camera);
+
+}  // namespace ssrcl::detail

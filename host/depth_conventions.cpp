@@ -1,0 +1,36 @@
+// Depth passes as other renderers write them, turned into planar view depth.
+#include <cmath>
+#include <glm/glm.hpp>
+
+#include "conventions.hpp"
+
+namespace ssrcl::detail {
+
+// A point at planar depth d on the pixel's ray is at distance d / (-dir.z) from the centre, with
+// dir the ray's unit direction; an orthographic ray has dir.z = -1, so radial reads as planar.
+Image planarFromRadial(const Image& radial, const Camera& camera) {
+  const glm::dmat4 inverse = glm::inverse(camera.projection);
+  Image planar = radial;
+  for (int y = 0; y < radial.height; ++y)
+    for (int x = 0; x < radial.width; ++x) {
+      const float r = radial.at(x, y, 0);
+      if (!isSurfaceDepth(r)) continue;
+      const glm::dvec3 near = cameraPointAt(inverse, camera, x + 0.5, y + 0.5, 1.0);
+      const glm::dvec3 far = cameraPointAt(inverse, camera, x + 0.5, y + 0.5, 2.0);
+      planar.at(x, y, 0) = float(r * -glm::normalize(far - near).z);
+    }
+  return planar;
+}
+
+Image planarFromPositions(const Image& positions, const Camera& camera) {
+  Image planar(positions.width, positions.height, 1);
+  for (int y = 0; y < positions.height; ++y)
+    for (int x = 0; x < positions.width; ++x) {
+      const glm::dvec3 p(positions.at(x, y, 0), positions.at(x, y, 1), positions.at(x, y, 2));
+      const bool none = !std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z) || p == glm::dvec3(0.0);
+      planar.at(x, y, 0) = none ? 1e10f : float(-(camera.view * glm::dvec4(p, 1.0)).z);
+    }
+  return planar;
+}
+
+}  // namespace ssrcl::detail

@@ -1,0 +1,163 @@
+// Cameras stored in EXR headers by renderers, turned into ssrcl's (OpenGL eye space and clip
+// matrix over the display window). README, Camera, lists the attributes and their sources.
+#include "exr_header_camera.hpp"
+
+#include <OpenEXR/ImfFloatAttribute.h>
+#include <OpenEXR/ImfIntAttribute.h>
+#include <OpenEXR/ImfMatrixAttribute.h>
+
+#include <cmath>
+#include <glm/glm.hpp>
+
+#include "ssrcl/error.hpp"
+
+namespace ssrcl::detail {
+namespace {
+
+// Imath matrices multiply row vectors (p' = p M, m[row][col]); the same numbers read as GLM's
+// m[column][row] are the column-vector matrix of the same map, so entries copy across as is.
+glm::dmat4 fromImath(const Imath::M44f& m) {
+  glm::dmat4 g;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) g[i][j] = m[i][j];
+  return g;
+}
+
+const Imath::M44f* matrix(const Imf::Header& header, const char* name) {
+  const auto* a = header.findTypedAttribute<Imf::M44fAttribute>(name);
+  return a ? &a->value() : nullptr;
+}
+
+template <class Attribute>
+std::optional<double> number(const Imf::Header& header, const char* name) {
+  const auto* a = header.findTypedAttribute<Attribute>(name);
+  return a ? std::optional<double>(a->value()) : std::nullopt;
+}
+
+// OpenEXR camera space (+z forward, left-handed) to OpenGL eye space (-z forward).
+const glm::dmat4 kFlipZ(1, 0, 0, 0, 0, 1, 0, 0, 0, 0, -1, 0, 0, 0, 0, 1);
+
+// Builds a clip matrix from rows x, y, w of a map from eye space to homogeneous NDC x and y in
+// [-1, 1] (y up): w must be a multiple of -z (perspective) or of 1 (orthographic). The depth row
+// is a placeholder (near 1, far infinity) until fitClipPlanes or the header's clip planes set it.
+Camera fromEyeToNdc(const glm::dmat4& eyeToNdc, const glm::dmat4& view, const PixelBox& display,
+                    const std::string& where) {
+  const glm::dvec4 w(eyeToNdc[0][3], eyeToNdc[1][3], eyeToNdc[2][3], eyeToNdc[3][3]);
+  const double scale = glm::length(w);
+  const bool perspective = std::abs(w.z) > 1e-6 * scale;
+  const double k = perspective ? -w.z : w.w;
+  if (!(scale > 0.0) || std::abs(w.x) > 1e-5 * scale || std::abs(w.y) > 1e-5 * scale ||
+      (perspective && std::abs(w.w) > 1e-5 * scale) || k == 0.0)
+    throw Error(ErrorCode::InvalidInput,
+                where + " is not the projection of a pinhole or orthographic camera looking along its z axis");
+  glm::dmat4 p(0.0);
+  for (int c = 0; c < 4; ++c) {
+    p[c][0] = eyeToNdc[c][0] / k;
+    p[c][1] = eyeToNdc[c][1] / k;
+  }
+  if (perspective) {
+    p[2][3] = -1.0;
+  } else {
+    p[3][3] = 1.0;
+  }
+  Camera camera;
+  camera.view = view;
+  camera.projection = p;
+  camera.width = display.width();
+  camera.height = display.height();
+  camera.nearPlane = 1.0;
+  camera.farPlane = INFINITY;
+  setClipPlanes(camera, camera.nearPlane, camera.farPlane);
+  return camera;
+}
+
+// OpenEXR's NDC: (0,0) top-left, (1,1) bottom-right of the display window, z discarded.
+std::optional<HeaderCamera> standardCamera(const Imf::Header& header, const glm::dmat4& view,
+                                           const PixelBox& display, const std::string& path) {
+  const Imath::M44f* toNdc = matrix(header, "worldToNDC");
+  const Imath::M44f* toScreen = matrix(header, "worldToScreen");
+  glm::dmat4 toUnit(1.0);  // from the file's projected space to our NDC, y up
+  const Imath::M44f* projected = toNdc ? toNdc : toScreen;
+  if (!projected) return std::nullopt;
+  if (toNdc) {
+    toUnit[0][0] = 2.0, toUnit[3][0] = -1.0;  // x' = 2x - w
+    toUnit[1][1] = -2.0, toUnit[3][1] = 1.0;  // y' = w - 2y
+  } else {
+    // RenderMan's screen space, y up, over its default screen window: the display window's
+    // longer side spans [-1, 1] scaled by the frame aspect ratio.
+    const double aspect = double(display.width()) / display.height();
+    toUnit[0][0] = aspect >= 1.0 ? 1.0 / aspect : 1.0;
+    toUnit[1][1] = aspect >= 1.0 ? 1.0 : aspect;
+  }
+  const std::string where = path + ": header attribute '" + (toNdc ? "worldToNDC" : "worldToScreen") + "'";
+  HeaderCamera h;
+  h.camera = fromEyeToNdc(toUnit * fromImath(*projected) * glm::inverse(view), view, display, where);
+  h.attributes = std::string("worldToCamera + ") + (toNdc ? "worldToNDC" : "worldToScreen");
+  return h;
+}
+
+// V-Ray: cameraTransform is camera-to-world (camera looking down its -z, y up), cameraFov the
+// horizontal field of view in degrees. Row- or column-vector storage is told apart by where the
+// translation sits.
+std::optional<HeaderCamera> vrayCamera(const Imf::Header& header, const PixelBox& display, const std::string& path) {
+  const Imath::M44f* transform = matrix(header, "cameraTransform");
+  const std::optional<double> fov = number<Imf::FloatAttribute>(header, "cameraFov");
+  if (!transform || !fov) return std::nullopt;
+  glm::dmat4 cameraToWorld = fromImath(*transform);
+  const bool columnStored = (*transform)[3][0] == 0.f && (*transform)[3][1] == 0.f && (*transform)[3][2] == 0.f &&
+                            ((*transform)[0][3] != 0.f || (*transform)[1][3] != 0.f || (*transform)[2][3] != 0.f);
+  if (columnStored) cameraToWorld = glm::transpose(cameraToWorld);
+  const std::optional<double> projection = number<Imf::IntAttribute>(header, "cameraProjection");
+  if (projection && *projection != 0)
+    throw Error(ErrorCode::InvalidInput, path + ": header attribute 'cameraProjection' is " +
+                                             std::to_string(int(*projection)) +
+                                             ", not 0 (perspective), the only V-Ray projection read; give --camera");
+  if (!(*fov > 0.0 && *fov < 180.0))
+    throw Error(ErrorCode::InvalidInput, path + ": header attribute 'cameraFov' must be in (0, 180) degrees");
+  const double focal = 1.0 / std::tan(*fov * M_PI / 360.0);
+  const double aspect = double(display.width()) / display.height();
+  glm::dmat4 eyeToNdc(0.0);
+  eyeToNdc[0][0] = focal;
+  eyeToNdc[1][1] = focal * aspect;
+  eyeToNdc[2][3] = -1.0;
+  const glm::dmat4 view = glm::inverse(cameraToWorld);
+  HeaderCamera h;
+  h.camera = fromEyeToNdc(eyeToNdc, view, display, path + ": header attribute 'cameraTransform'");
+  h.attributes = "cameraTransform + cameraFov";
+  const std::optional<double> nearClip = number<Imf::FloatAttribute>(header, "cameraNearClip");
+  const std::optional<double> farClip = number<Imf::FloatAttribute>(header, "cameraFarClip");
+  if (nearClip && farClip && *nearClip > 0.0 && *farClip > *nearClip) {
+    setClipPlanes(h.camera, *nearClip, *farClip);
+    h.clipPlanesKnown = true;
+  }
+  return h;
+}
+
+std::optional<HeaderCamera> readCamera(const Imf::Header& header, const std::string& path) {
+  const Imath::Box2i& d = header.displayWindow();
+  const PixelBox display{d.min.x, d.min.y, d.max.x, d.max.y};
+  if (const Imath::M44f* toCamera = matrix(header, "worldToCamera")) {
+    std::optional<HeaderCamera> h = standardCamera(header, kFlipZ * fromImath(*toCamera), display, path);
+    if (h) {
+      validateCamera(h->camera, (path + ": header camera (" + h->attributes + ")").c_str());
+      return h;
+    }
+  }
+  std::optional<HeaderCamera> h = vrayCamera(header, display, path);
+  if (h) validateCamera(h->camera, (path + ": header camera (" + h->attributes + ")").c_str());
+  return h;
+}
+
+}  // namespace
+
+std::optional<HeaderCamera> cameraFromHeader(const Imf::Header& header, const std::string& path) {
+  try {
+    return readCamera(header, path);
+  } catch (const Error& e) {
+    HeaderCamera unusable;
+    unusable.problem = e.what();
+    return unusable;
+  }
+}
+
+}  // namespace ssrcl::detail

@@ -1,0 +1,81 @@
+// Adaptive surface thickness: how far behind a pixel's surface a ray may pass and still hit it.
+//
+// A depth buffer shows the front of every object and nothing of its depth. Objects are about as
+// deep as they are wide, so each pixel's thickness follows the visible extent of the surface it
+// belongs to, along the unbroken run of surface through it on its row and on its column: a pole,
+// a can or a plank is as deep as its narrow side is wide, a floor's runs are long. Thickness =
+// scale * chord, kept within [min_rel, max_rel] of the pixel's depth. Setup left |n.v| in
+// `thickness`: the depth is multiplied by it (hits measure along the normal).
+//
+// The chord is the depth of the surface along the viewing line, estimated as a round object's
+// would be: a pixel at view-space distances a and b from the two ends of its run lies under a chord
+// 2 sqrt(a b) deep (exact for a sphere, whichever line through the pixel; for an upright cylinder,
+// along its rows). The larger of the row's and the column's chords, no longer than the shorter
+// run (an object is no deeper than its narrow side is wide): silhouettes are thin, middles deep,
+// and a can is as deep at its top as at its middle.
+
+// Runs break at depth discontinuities, found from depth alone: shading normals (smoothed, bumped,
+// filtered over silhouettes) can differ from the geometry by tens of degrees. Along a plane
+// 1 / depth (perspective) or depth (orthographic) is affine in screen space, so on one surface a
+// pixel's depth is predicted, within 1%, by the two pixels on either side of it. Neighbours join
+// where their depths differ by under 2%, or where either side's line predicts the other.
+inline bool predicts(float d0, float d1, float d2) {
+  float tol = 0.01f;
+  return fabs(1.0f / d2 - (2.0f / d1 - 1.0f / d0)) <= tol / d2 || fabs(d2 - (2.0f * d1 - d0)) <= tol * d2;
+}
+
+inline bool joined(__global const float4* positions, int k, int length, int step, int base) {
+  float da = positions[base + (k - 1) * step].w, db = positions[base + k * step].w;
+  if (da >= SSRCL_NO_SURFACE || db >= SSRCL_NO_SURFACE) return false;
+  if (fabs(db - da) <= 0.02f * fmin(da, db)) return true;
+  if (k >= 2 && positions[base + (k - 2) * step].w < SSRCL_NO_SURFACE &&
+      predicts(positions[base + (k - 2) * step].w, da, db))
+    return true;
+  return k + 1 < length && positions[base + (k + 1) * step].w < SSRCL_NO_SURFACE &&
+         predicts(positions[base + (k + 1) * step].w, db, da);
+}
+
+// One work-item per row (axis 0) or column (axis 1). Axis 0 writes each pixel's (run length, chord)
+// to `row`; axis 1 compares with its column's and writes the thickness.
+__kernel void surface_thickness(int2 size, int axis, __global const float4* positions,
+                                float scale, float min_rel, float max_rel,
+                                __global float2* row, __global float* thickness) {
+  int line = get_global_id(0);
+  int count = axis == 0 ? size.y : size.x;
+  if (line >= count) return;
+  int length = axis == 0 ? size.x : size.y;
+  int step = axis == 0 ? 1 : size.x;
+  int base = axis == 0 ? line * size.x : line;
+  int start = 0;
+  for (int k = 1; k <= length; ++k) {
+    int prev = base + (k - 1) * step;
+    if (k < length && joined(positions, k, length, step, base)) continue;
+    // The run [start, k) ends here. A flat run (every depth on the line through its two ends, in
+    // 1 / depth or depth, within 1%) is a slab seen from the front (a wall, a floor, a board, a
+    // sign): how deep it goes cannot be told from its width, and slabs standing free are thin, so
+    // it contributes no chord. A curved run gets each pixel's chord.
+    float d_first = positions[base + start * step].w, d_last = positions[prev].w;
+    bool flat = true;
+    for (int j = start + 1; j < k - 1 && flat; ++j) {
+      float f = (float)(j - start) / (float)(k - 1 - start), d = positions[base + j * step].w;
+      flat = fabs(1.0f / d - mix(1.0f / d_first, 1.0f / d_last, f)) <= 0.01f / d ||
+             fabs(d - mix(d_first, d_last, f)) <= 0.01f * d;
+    }
+    float3 first = positions[base + start * step].xyz, last = positions[prev].xyz;
+    float run = distance(first, last);
+    for (int j = start; j < k; ++j) {
+      int i = base + j * step;
+      float3 p = positions[i].xyz;
+      float chord = flat ? 0.0f : 2.0f * sqrt(distance(first, p) * distance(p, last));
+      if (axis == 0) {
+        row[i] = (float2)(run, chord);
+      } else {
+        float d = positions[i].w;
+        float2 r = row[i];
+        float depth_chord = fmin(fmax(chord, r.y), fmin(run, r.x));
+        if (d < SSRCL_NO_SURFACE) thickness[i] *= clamp(scale * depth_chord, min_rel * d, max_rel * d);
+      }
+    }
+    start = k;
+  }
+}

@@ -1,0 +1,503 @@
+// Passes in other renderers' conventions (issue 12), made from the bundled Blender samples: each
+// variant traces, through `ssrcl trace` as a user runs it, to the original's reflection pass; each
+// wrong declaration is refused before tracing with exit 2, naming the pass and the fixing option.
+#include <gtest/gtest.h>
+
+#include <OpenEXR/ImfFloatAttribute.h>
+#include <OpenEXR/ImfIntAttribute.h>
+#include <OpenEXR/ImfMatrixAttribute.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <glm/glm.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+#include <map>
+
+#include "ssrcl/ssrcl.hpp"
+#include "support/exr_fixtures.hpp"
+#include "support/run_command.hpp"
+#include "support/temp_dir.hpp"
+
+namespace {
+
+using ssrcl::test::ExrChannel;
+using ssrcl::test::ExrOptions;
+using ssrcl::test::runCommand;
+using ssrcl::test::shellQuote;
+
+std::string samplePath(const std::string& name, const char* ext) {
+  return std::string(SSRCL_SOURCE_DIR) + "/samples/blender/" + name + "/" + name + ext;
+}
+
+// A sample's passes as Blender wrote them, in world space and planar depth, row by row.
+struct Sample {
+  std::string name;
+  ssrcl::GBuffer g;
+  ssrcl::Camera camera;
+  int w = 0, h = 0;
+  std::string original;  // its reflection pass, traced once from the untouched file (originalPass)
+
+  bool sky(int i) const { return !(g.depth.data[i] < 1e9f); }
+  // The camera-space point of pixel i, unprojected through the projection's own depth mapping.
+  glm::dvec3 eyePoint(int i) const {
+    const int x = i % w, y = i / w;
+    const double d = g.depth.data[i];
+    const glm::dvec4 clip = camera.projection * glm::dvec4(0.0, 0.0, -d, 1.0);
+    const glm::dvec4 ndc(2.0 * (x + 0.5) / w - 1.0, 1.0 - 2.0 * (y + 0.5) / h, clip.z / clip.w, 1.0);
+    const glm::dvec4 p = glm::inverse(camera.projection) * ndc;
+    return glm::dvec3(p) / p.w;
+  }
+  std::vector<float> channel(const ssrcl::Image& image, int c) const {
+    std::vector<float> v(size_t(w) * h);
+    for (size_t i = 0; i < v.size(); ++i) v[i] = image.data[i * image.channels + c];
+    return v;
+  }
+};
+
+// Channel sets of a variant. Color and roughness are the original's, under the given names.
+std::vector<ExrChannel> baseChannels(const Sample& s, const std::string& color, const std::string& roughness) {
+  return {{color + "R", s.channel(s.g.color, 0)},
+          {color + "G", s.channel(s.g.color, 1)},
+          {color + "B", s.channel(s.g.color, 2)},
+          {roughness, s.channel(s.g.roughness, 0)}};
+}
+
+std::vector<float> radialDepth(const Sample& s) {
+  std::vector<float> r(size_t(s.w) * s.h);
+  for (size_t i = 0; i < r.size(); ++i) r[i] = s.sky(int(i)) ? 1e10f : float(glm::length(s.eyePoint(int(i))));
+  return r;
+}
+
+std::vector<ExrChannel> positions(const Sample& s, const std::string& prefix) {
+  std::vector<float> p[3];
+  const glm::dmat4 eyeToWorld = glm::inverse(s.camera.view);
+  for (int i = 0; i < s.w * s.h; ++i) {
+    const glm::dvec3 world = s.sky(i) ? glm::dvec3(0.0) : glm::dvec3(eyeToWorld * glm::dvec4(s.eyePoint(i), 1.0));
+    for (int c = 0; c < 3; ++c) p[c].push_back(float(world[c]));
+  }
+  return {{prefix + "X", p[0]}, {prefix + "Y", p[1]}, {prefix + "Z", p[2]}};
+}
+
+// Normals in OpenGL eye space (flipZ false) or OpenEXR/RenderMan camera space (+z forward).
+std::vector<ExrChannel> cameraNormals(const Sample& s, const std::string& prefix, const char* axes, bool flipZ) {
+  std::vector<float> n[3];
+  const glm::dmat3 toEye(s.camera.view);
+  for (int i = 0; i < s.w * s.h; ++i) {
+    glm::dvec3 e = toEye * glm::dvec3(s.g.normal.data[3 * i], s.g.normal.data[3 * i + 1], s.g.normal.data[3 * i + 2]);
+    if (flipZ) e.z = -e.z;
+    for (int c = 0; c < 3; ++c) n[c].push_back(float(e[c]));
+  }
+  return {{prefix + axes[0], n[0]}, {prefix + axes[1], n[1]}, {prefix + axes[2], n[2]}};
+}
+
+std::vector<ExrChannel> worldNormals(const Sample& s, const std::string& prefix, int negatedAxis = -1) {
+  std::vector<ExrChannel> n = {{prefix + "X", s.channel(s.g.normal, 0)},
+                               {prefix + "Y", s.channel(s.g.normal, 1)},
+                               {prefix + "Z", s.channel(s.g.normal, 2)}};
+  if (negatedAxis >= 0)
+    for (float& v : n[negatedAxis].values) v = -v;
+  return n;
+}
+
+std::vector<ExrChannel> operator+(std::vector<ExrChannel> a, const std::vector<ExrChannel>& b) {
+  a.insert(a.end(), b.begin(), b.end());
+  return a;
+}
+
+// The Imath matrix (row vectors: p'_j = sum_i p_i M[i][j]) of a GLM column-vector map
+// (p'_j = sum_i A[i][j] p_i, GLM indexing [column][row]): the same numbers at the same indices.
+// addStandardCamera checks the result with Imath's own arithmetic.
+Imath::M44f imath(const glm::dmat4& columnVectorMatrix) {
+  Imath::M44f m;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) m[i][j] = float(columnVectorMatrix[i][j]);
+  return m;
+}
+
+// OpenEXR's definitions, checked with Imath's own arithmetic on the sample's surface points:
+// worldToCamera gives +z forward camera space, worldToNDC (0,0) top-left to (1,1) bottom-right.
+// `display` is the display window in the sample's pixel coordinates, `c` its camera.
+void addStandardCamera(Imf::Header& header, const Sample& s, bool screen, const ssrcl::Camera& c,
+                       const Imath::Box2i& display) {
+  const glm::dmat4 flipZ = glm::scale(glm::dmat4(1.0), glm::dvec3(1, 1, -1));
+  const glm::dmat4 toCamera = flipZ * c.view;
+  glm::dmat4 toUnit(1.0);  // clip to homogeneous NDC [0,1], y down; or RenderMan screen space
+  if (screen) {
+    toUnit[0][0] = double(c.width) / c.height;
+  } else {
+    toUnit = glm::dmat4(0.5, 0, 0, 0, 0, -0.5, 0, 0, 0, 0, 1, 0, 0.5, 0.5, 0, 1);
+  }
+  const Imath::M44f camera = imath(toCamera), projected = imath(toUnit * c.projection * c.view);
+  for (int i = 0; i < s.w * s.h; i += 997) {
+    if (s.sky(i)) continue;
+    const glm::dvec3 eye = s.eyePoint(i);
+    const glm::dvec3 world = glm::dvec3(glm::inverse(s.camera.view) * glm::dvec4(eye, 1.0));
+    Imath::V3f inCamera, n;
+    camera.multVecMatrix(Imath::V3f(float(world.x), float(world.y), float(world.z)), inCamera);
+    projected.multVecMatrix(Imath::V3f(float(world.x), float(world.y), float(world.z)), n);
+    EXPECT_NEAR(inCamera.z, -eye.z, 1e-3 * std::abs(eye.z));
+    if (!screen) {
+      EXPECT_NEAR(n.x * c.width + display.min.x, i % s.w + 0.5, 1e-2);
+      EXPECT_NEAR(n.y * c.height + display.min.y, i / s.w + 0.5, 1e-2);
+    }
+  }
+  header.insert("worldToCamera", Imf::M44fAttribute(camera));
+  header.insert(screen ? "worldToScreen" : "worldToNDC", Imf::M44fAttribute(projected));
+}
+
+// V-Ray: camera-to-world and the horizontal field of view in degrees; the samples' frusta are
+// centred (no lens shift), which is all a field of view can describe.
+void addVrayCamera(Imf::Header& header, const Sample& s) {
+  ASSERT_EQ(s.camera.projection[2][0], 0.0);
+  header.insert("cameraTransform", Imf::M44fAttribute(imath(glm::inverse(s.camera.view))));
+  header.insert("cameraFov", Imf::FloatAttribute(float(2.0 * std::atan(1.0 / s.camera.projection[0][0]) * 180.0 / M_PI)));
+  header.insert("cameraProjection", Imf::IntAttribute(0));
+  header.insert("cameraNearClip", Imf::FloatAttribute(float(s.camera.nearPlane)));
+  header.insert("cameraFarClip", Imf::FloatAttribute(float(s.camera.farPlane)));
+}
+
+// The sample's camera for another display window (pixel coordinates of the original frame):
+// each NDC axis re-centred and re-scaled on the window's span, row by row of the clip matrix.
+ssrcl::Camera cameraForWindow(const Sample& s, int x0, int y0, int x1, int y1) {
+  ssrcl::Camera c = s.camera;
+  const double left = 2.0 * x0 / s.w - 1.0, right = 2.0 * (x1 + 1) / s.w - 1.0;
+  const double top = 1.0 - 2.0 * y0 / s.h, bottom = 1.0 - 2.0 * (y1 + 1) / s.h;
+  const double cx = 0.5 * (left + right), hx = 0.5 * (right - left), cy = 0.5 * (top + bottom),
+               hy = 0.5 * (top - bottom);
+  for (int col = 0; col < 4; ++col) {
+    c.projection[col][0] = (s.camera.projection[col][0] - cx * s.camera.projection[col][3]) / hx;
+    c.projection[col][1] = (s.camera.projection[col][1] - cy * s.camera.projection[col][3]) / hy;
+  }
+  c.width = x1 - x0 + 1;
+  c.height = y1 - y0 + 1;
+  return c;
+}
+
+std::string cli(const std::string& args) { return shellQuote(SSRCL_CLI) + " " + args; }
+
+class Conventions : public testing::TestWithParam<const char*> {
+ protected:
+  static inline ssrcl::test::TempDir* dir = nullptr;
+  static inline std::map<std::string, Sample> samples;
+
+  static void SetUpTestSuite() { dir = new ssrcl::test::TempDir("ssrcl-conventions"); }
+  static void TearDownTestSuite() {
+    delete dir;
+    dir = nullptr;
+    samples.clear();
+  }
+
+  // Loaded and traced once per sample, shared by every case.
+  const Sample& sample() {
+    const std::string name = GetParam();
+    auto it = samples.find(name);
+    if (it != samples.end()) return it->second;
+    Sample s;
+    s.name = name;
+    ssrcl::GBufferSource source;
+    source.file = samplePath(name, ".exr");
+    s.g = ssrcl::loadGBuffer(source);
+    s.camera = ssrcl::loadCameraJson(samplePath(name, ".camera.json"));
+    s.w = s.g.depth.width;
+    s.h = s.g.depth.height;
+    return samples.emplace(name, std::move(s)).first->second;
+  }
+
+  // The untouched sample's reflection pass, traced on first use (ctest runs each case alone).
+  const std::string& originalPass() {
+    Sample& s = samples.at(GetParam());
+    if (s.original.empty()) {
+      const std::string out = dir->file(s.name + ".original.exr");
+      const auto r = runCommand(cli("trace " + shellQuote(samplePath(s.name, ".exr")) + " -o " + shellQuote(out)));
+      EXPECT_EQ(r.exitCode, 0) << r.output;
+      s.original = out;
+    }
+    return s.original;
+  }
+
+  std::string variant(const std::string& tag, const std::vector<ExrChannel>& channels, const ExrOptions& options = {},
+                      const ssrcl::Camera* sidecar = nullptr) {
+    const Sample& s = sample();
+    const std::string path = dir->file(s.name + "." + tag + ".exr");
+    ssrcl::test::writeExr(path, s.w, s.h, channels, options);
+    if (sidecar) ssrcl::saveCameraJson(dir->file(s.name + "." + tag + ".camera.json"), *sidecar);
+    return path;
+  }
+
+  // Traces `input` with `options` and compares with the original's pass on its pixels.
+  void expectSameAsOriginal(const std::string& input, const std::string& options,
+                            const Imath::Box2i* display = nullptr) {
+    const Sample& s = sample();
+    const std::string out = input + ".refl.exr";
+    const auto r = runCommand(cli("trace " + shellQuote(input) + " " + options + " -o " + shellQuote(out)));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    expectSameAs(out, display);
+  }
+
+  void expectSameAs(const std::string& out, const Imath::Box2i* display) {
+    const Sample& s = sample();
+    const auto a = ssrcl::test::readExr(originalPass()), b = ssrcl::test::readExr(out);
+    ASSERT_EQ(a.width, b.width);
+    ASSERT_EQ(a.height, b.height);
+    if (display) {
+      EXPECT_EQ(b.displayWindow, *display);
+      EXPECT_EQ(b.dataWindow, Imath::Box2i({0, 0}, {s.w - 1, s.h - 1}));
+    }
+    // Conversions round in float: a ray may land a pixel away here and there.
+    long long off = 0, pixels = 0;
+    double sum = 0.0;
+    for (const char* c : {"R", "G", "B", "A", "distance"}) {
+      for (size_t i = 0; i < a.channels.at(c).values.size(); ++i) {
+        const double d = std::abs(double(a.channels.at(c).values[i]) - b.channels.at(c).values[i]);
+        off += d > 1e-3;
+        sum += d;
+        ++pixels;
+      }
+    }
+    EXPECT_LE(off, pixels / 1000) << out;
+    EXPECT_LT(sum / pixels, 2e-5) << out;
+  }
+
+  // Refused before tracing, with a message naming `pass` and `fix`.
+  void expectRefused(const std::string& input, const std::string& options, const std::string& pass,
+                     const std::string& fix) {
+    const std::string out = input + ".refused.exr";
+    const auto r = runCommand(cli("trace " + shellQuote(input) + " " + options + " -o " + shellQuote(out)));
+    EXPECT_EQ(r.exitCode, 2) << r.output;
+    EXPECT_NE(r.output.find(pass), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find(fix), std::string::npos) << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+    EXPECT_FALSE(std::filesystem::exists(out));
+  }
+};
+
+const std::string kBlender = "ViewLayer.";
+
+TEST_P(Conventions, RadialDepthAndCameraNormalsByOption) {
+  const Sample& s = sample();
+  const std::string in = variant(
+      "radial", baseChannels(s, kBlender + "Combined.", kBlender + "roughness.X") +
+                    std::vector<ExrChannel>{{kBlender + "Depth.Z", radialDepth(s)}} +
+                    cameraNormals(s, kBlender + "Normal.", "XYZ", true),
+      {}, &s.camera);
+  expectSameAsOriginal(in, "--depth-kind radial --normal-space camera");
+  expectRefused(in, "--normal-space camera", "depth pass", "--depth-kind radial");
+  expectRefused(in, "--depth-kind radial", "normal pass", "--normal-space camera");
+  expectRefused(in, "--depth-kind radial --normal-space camera-gl", "normal pass", "--normal-space camera");
+}
+
+TEST_P(Conventions, PositionsInsteadOfDepth) {
+  const Sample& s = sample();
+  const std::string in = variant("position",
+                                 baseChannels(s, kBlender + "Combined.", kBlender + "roughness.X") +
+                                     positions(s, "P.") + cameraNormals(s, kBlender + "Normal.", "XYZ", false),
+                                 {}, &s.camera);
+  expectSameAsOriginal(in, "--position P.X,P.Y,P.Z --normal-space camera-gl");
+  expectRefused(in, "--position P.X,P.Y,P.Z", "normal pass", "--normal-space camera-gl");
+}
+
+// RenderMan's conventions: planar z, camera-space Nn (+z forward), worldToCamera + worldToNDC.
+TEST_P(Conventions, RenderManPresetWithHeaderCamera) {
+  const Sample& s = sample();
+  ExrOptions options;
+  options.editHeader = [&](Imf::Header& h) {
+    addStandardCamera(h, s, false, s.camera, Imath::Box2i({0, 0}, {s.w - 1, s.h - 1}));
+  };
+  const std::string in = variant("renderman",
+                                 baseChannels(s, "", "roughness") +
+                                     std::vector<ExrChannel>{{"z", s.channel(s.g.depth, 0)}} +
+                                     cameraNormals(s, "Nn.", "xyz", true),
+                                 options);
+  expectSameAsOriginal(in, "--renderer renderman");
+  expectRefused(in, "--renderer renderman --normal-space world", "normal pass", "--normal-space camera");
+}
+
+// Arnold's: radial Z, world N, worldToCamera + worldToScreen.
+TEST_P(Conventions, ArnoldPresetWithScreenMatrix) {
+  const Sample& s = sample();
+  ExrOptions options;
+  options.editHeader = [&](Imf::Header& h) {
+    addStandardCamera(h, s, true, s.camera, Imath::Box2i({0, 0}, {s.w - 1, s.h - 1}));
+  };
+  const std::string in = variant("arnold",
+                                 baseChannels(s, "", "roughness") +
+                                     std::vector<ExrChannel>{{"Z", radialDepth(s)}} + worldNormals(s, "N."),
+                                 options);
+  expectSameAsOriginal(in, "--renderer arnold");
+  expectRefused(in, "--renderer arnold --depth-kind planar", "depth pass", "--depth-kind radial");
+}
+
+// V-Ray's: planar Z, camera-space normals (-z forward), cameraTransform + cameraFov.
+TEST_P(Conventions, VrayPresetWithVrayCamera) {
+  const Sample& s = sample();
+  ExrOptions options;
+  options.editHeader = [&](Imf::Header& h) { addVrayCamera(h, s); };
+  const std::string in = variant("vray",
+                                 baseChannels(s, "", "roughness") +
+                                     std::vector<ExrChannel>{{"Z", s.channel(s.g.depth, 0)}} +
+                                     cameraNormals(s, "normals.", "RGB", false),
+                                 options);
+  expectSameAsOriginal(in, "--renderer vray");
+  expectRefused(in, "--renderer vray --normal-space camera", "normal pass", "--normal-space camera-gl");
+}
+
+// The original frame as the overscan of a smaller display window: traced over all of it, the
+// windows kept. And as a crop of a larger one.
+TEST_P(Conventions, OverscanAndCrop) {
+  const Sample& s = sample();
+  const auto channels = baseChannels(s, kBlender + "Combined.", kBlender + "roughness.X") +
+                        std::vector<ExrChannel>{{kBlender + "Depth.Z", s.channel(s.g.depth, 0)}} +
+                        worldNormals(s, kBlender + "Normal.");
+  for (const Imath::Box2i display : {Imath::Box2i({30, 10}, {s.w - 51, s.h - 31}),     // overscan
+                                     Imath::Box2i({-50, -40}, {s.w + 69, s.h + 39})}) {  // crop
+    const ssrcl::Camera camera = cameraForWindow(s, display.min.x, display.min.y, display.max.x, display.max.y);
+    // The window camera sees each world point at the same pixel, counted from its own corner.
+    const glm::dvec3 p(0.3, -0.2, -5.0);
+    const glm::dvec3 a = ssrcl::cameraToScreen(s.camera, p), b = ssrcl::cameraToScreen(camera, p);
+    ASSERT_NEAR(b.x + display.min.x, a.x, 1e-9);
+    ASSERT_NEAR(b.y + display.min.y, a.y, 1e-9);
+    ExrOptions options;
+    options.displayWindow = display;
+    const std::string tag = display.min.x > 0 ? "overscan" : "crop";
+    expectSameAsOriginal(variant(tag, channels, options, &camera), "", &display);
+  }
+}
+
+// `ssrcl batch` reads frames the same way: an overscan frame whose only camera is its header's
+// (for the display window), traced over its data window, windows kept.
+TEST_P(Conventions, BatchOverscanWithHeaderCamera) {
+  const Sample& s = sample();
+  const Imath::Box2i display({20, 15}, {s.w - 41, s.h - 26});
+  const ssrcl::Camera camera = cameraForWindow(s, display.min.x, display.min.y, display.max.x, display.max.y);
+  ExrOptions options;
+  options.displayWindow = display;
+  options.editHeader = [&](Imf::Header& h) { addStandardCamera(h, s, false, camera, display); };
+  const std::string in = variant("batch", baseChannels(s, "", "roughness") +
+                                              std::vector<ExrChannel>{{"z", s.channel(s.g.depth, 0)}} +
+                                              cameraNormals(s, "Nn.", "xyz", true),
+                                 options);
+  const std::string outDir = dir->file(s.name + ".batch.out");
+  const auto r = runCommand(cli("batch " + shellQuote(in) + " --renderer renderman -q -o " + shellQuote(outDir + "/")));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  expectSameAs(outDir + "/" + s.name + ".batch.refl.exr", &display);
+}
+
+// Declarations that contradict the passes, on the untouched sample.
+TEST_P(Conventions, WrongDeclarationsAreRefused) {
+  const Sample& s = sample();
+  const std::string in = samplePath(s.name, ".exr");
+  const std::string camera = "--camera " + shellQuote(samplePath(s.name, ".camera.json"));
+  expectRefused(in, camera + " --normal-space camera", "normal pass", "--normal-space world");
+  expectRefused(in, camera + " --depth-kind radial", "depth pass", "--depth-kind planar");
+  expectRefused(in, camera + " --renderer vray --layer ViewLayer --color-channels '' --depth-channel '' "
+                             "--normal-channels ''",
+                "normal pass", "--normal-space world");
+
+  const std::string flipped = variant("flipped",
+                                      baseChannels(s, kBlender + "Combined.", kBlender + "roughness.X") +
+                                          std::vector<ExrChannel>{{kBlender + "Depth.Z", s.channel(s.g.depth, 0)}} +
+                                          worldNormals(s, kBlender + "Normal.", 1),
+                                      {}, &s.camera);
+  expectRefused(flipped, "", "normal pass's y axis", "--no-input-check");
+
+  // A camera that is not the render's: rolled a quarter turn about its axis.
+  ssrcl::Camera rolled = s.camera;
+  rolled.view = glm::rotate(glm::dmat4(1.0), M_PI / 2, glm::dvec3(0, 0, 1)) * s.camera.view;
+  const std::string rolledPath = dir->file(s.name + ".rolled.camera.json");
+  ssrcl::saveCameraJson(rolledPath, rolled);
+  expectRefused(in, "--camera " + shellQuote(rolledPath), "camera", "--no-input-check");
+}
+
+// The check's margins on the untouched sample, declared rightly: every other reading that tells
+// the passes apart puts the pass normals far from where they are (score near -1; refusal takes
+// above +0.5), and the declared reading fits within a couple of degrees.
+TEST_P(Conventions, CheckSeparatesReadings) {
+  const Sample& s = sample();
+  ssrcl::GBufferSource source;
+  source.file = samplePath(s.name, ".exr");
+  const ssrcl::InputCheckReport report = ssrcl::checkInputConventions(s.g, source, s.camera);
+  EXPECT_EQ(report.preferred.depth, "planar");
+  EXPECT_EQ(report.preferred.normals, "world");
+  EXPECT_LT(report.declared.meanAngleDegrees, 2.0);
+  EXPECT_GT(report.comparedPixels, 10000);
+  for (const ssrcl::ConventionFit& r : report.readings) {
+    RecordProperty(r.depth + " depth, " + r.normals + " normals",
+                   std::to_string(r.meanAngleDegrees) + " deg, score " + std::to_string(r.score));
+    if (r.depth == "planar" && r.normals == "world") continue;
+    if (r.meanAngleDegrees - report.declared.meanAngleDegrees > 3.0) EXPECT_LT(r.score, -0.5) << r.depth << " " << r.normals;
+  }
+}
+
+// Without a sidecar, a header without a camera, or with one that cannot be used, is refused with
+// the file and attribute named; a sidecar still wins over an unusable header camera.
+TEST_P(Conventions, HeaderCameraMissingOrUnusable) {
+  const Sample& s = sample();
+  const auto channels = baseChannels(s, kBlender + "Combined.", kBlender + "roughness.X") +
+                        std::vector<ExrChannel>{{kBlender + "Depth.Z", s.channel(s.g.depth, 0)}} +
+                        worldNormals(s, kBlender + "Normal.");
+  expectRefused(variant("nocamera", channels), "", "has no camera in its header", "--camera");
+  ExrOptions options;
+  options.editHeader = [&](Imf::Header& h) {
+    h.insert("cameraTransform", Imf::M44fAttribute(imath(glm::inverse(s.camera.view))));
+    h.insert("cameraFov", Imf::FloatAttribute(60.0f));
+    h.insert("cameraProjection", Imf::IntAttribute(2));  // spherical
+  };
+  const std::string unusable = variant("spherical", channels, options);
+  expectRefused(unusable, "", "'cameraProjection'", "--camera");
+  const auto r = runCommand(cli("trace " + shellQuote(unusable) + " --camera " +
+                                shellQuote(samplePath(s.name, ".camera.json")) + " --max-roughness 0 -o " +
+                                shellQuote(unusable + ".refl.exr")));
+  EXPECT_EQ(r.exitCode, 0) << r.output;
+}
+
+TEST_P(Conventions, NoInputCheckTracesAnyway) {
+  const Sample& s = sample();
+  const std::string out = dir->file(s.name + ".unchecked.exr");
+  const auto r = runCommand(cli("trace " + shellQuote(samplePath(s.name, ".exr")) +
+                                " --normal-space camera --no-input-check --roughness 1 --max-roughness 0 -o " +
+                                shellQuote(out)));
+  EXPECT_EQ(r.exitCode, 0) << r.output;
+}
+
+INSTANTIATE_TEST_SUITE_P(BlenderSamples, Conventions, testing::Values("mirror", "glossy"));
+
+// The corpus scenes (bump-mapped floors, thin objects, grazing views, centimetre units): no false
+// alarm when declared rightly, and each wrong declaration still refused. Check only, no tracing.
+TEST(ConventionCheck, CorpusScenes) {
+  const std::filesystem::path corpus = std::filesystem::path(SSRCL_SOURCE_DIR) / "samples" / "corpus";
+  int scenes = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(corpus)) {
+    if (entry.path().extension() != ".exr") continue;
+    ++scenes;
+    const std::string name = entry.path().stem().string();
+    ssrcl::GBufferSource source;
+    source.file = entry.path().string();
+    const ssrcl::GBuffer g = ssrcl::loadGBuffer(source);
+    const ssrcl::Camera camera = ssrcl::loadCameraJson((corpus / (name + ".camera.json")).string());
+    const ssrcl::InputCheckReport right = ssrcl::checkInputConventions(g, source, camera);
+    EXPECT_EQ(right.preferred.depth + " " + right.preferred.normals, "planar world") << name;
+    std::string figures = "right " + std::to_string(right.declared.meanAngleDegrees) + " deg";
+    for (const auto& [depth, space] : {std::pair{ssrcl::DepthKind::Radial, ssrcl::NormalSpace::World},
+                                      std::pair{ssrcl::DepthKind::Planar, ssrcl::NormalSpace::Camera},
+                                      std::pair{ssrcl::DepthKind::Planar, ssrcl::NormalSpace::CameraGL}}) {
+      ssrcl::GBufferSource wrong = source;
+      wrong.depthKind = depth;
+      wrong.normalSpace = space;
+      try {
+        ssrcl::checkInputConventions(g, wrong, camera);
+        ADD_FAILURE() << name << ": " << ssrcl::depthKindName(depth) << " " << ssrcl::normalSpaceName(space)
+                      << " was not refused";
+      } catch (const ssrcl::Error& e) {
+        EXPECT_EQ(e.code(), ssrcl::ErrorCode::InvalidInput);
+        const std::string what = e.what();
+        figures += std::string("; ") + ssrcl::depthKindName(depth) + "/" + ssrcl::normalSpaceName(space) + ": " +
+                   what.substr(what.find("differ"));
+      }
+    }
+    RecordProperty(name, figures);
+  }
+  if (scenes == 0) GTEST_SKIP() << "no corpus scenes in " << corpus;
+}
+
+}  // namespace
