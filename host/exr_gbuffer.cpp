@@ -360,6 +360,24 @@ GBuffer loadGBuffer(const GBufferSource& source) {
                       "roughness"});
 
   std::map<std::string, ExrFile> files;  // each file is opened once
+
+  // Optional glossy passes, read where all nine channels are there (Blender multilayer naming).
+  Image glossDir, glossInd, glossCol;
+  const std::string noNames;
+  const std::string& colorPath = source.colorFile.empty() ? source.file : source.colorFile;
+  if (source.glossyPasses && !source.layer.empty() && !colorPath.empty()) {
+    ExrFile& file = files.try_emplace(colorPath, colorPath).first->second;
+    bool present = true;
+    for (const char* pass : {"GlossDir", "GlossInd", "GlossCol"})
+      for (const char* c : {"R", "G", "B"}) present = present && file.find(source.layer + "." + pass + "." + c).part >= 0;
+    if (present) {
+      passes.push_back({"glossy direct", &glossDir, 3, source.colorFile, noNames, "GlossDir.R,GlossDir.G,GlossDir.B", ""});
+      passes.push_back(
+          {"glossy indirect", &glossInd, 3, source.colorFile, noNames, "GlossInd.R,GlossInd.G,GlossInd.B", ""});
+      passes.push_back({"glossy colour", &glossCol, 3, source.colorFile, noNames, "GlossCol.R,GlossCol.G,GlossCol.B", ""});
+    }
+  }
+
   std::vector<Request> requests;
   for (const Pass& pass : passes) {
     const std::string& path = pass.file.empty() ? source.file : pass.file;
@@ -437,6 +455,12 @@ GBuffer loadGBuffer(const GBufferSource& source) {
         part.readPixels(window.min.y, window.max.y);
       }
     });
+  }
+  if (!glossCol.empty()) {
+    gbuffer.base = gbuffer.color;
+    for (std::size_t k = 0; k < gbuffer.base.data.size(); ++k)
+      gbuffer.base.data[k] -= glossCol.data[k] * (glossDir.data[k] + glossInd.data[k]);
+    gbuffer.specular = std::move(glossCol);
   }
   return gbuffer;
 }

@@ -23,6 +23,13 @@ glm::dmat4 fromImath(const Imath::M44f& m) {
   return g;
 }
 
+Imath::M44f toImath(const glm::dmat4& g) {
+  Imath::M44f m;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) m[i][j] = float(g[i][j]);
+  return m;
+}
+
 const Imath::M44f* matrix(const Imf::Header& header, const char* name) {
   const auto* a = header.findTypedAttribute<Imf::M44fAttribute>(name);
   return a ? &a->value() : nullptr;
@@ -148,7 +155,15 @@ std::optional<HeaderCamera> readCamera(const Imf::Header& header, const std::str
   return h;
 }
 
+// Our clip space to OpenEXR's NDC: x' = (x + w) / 2, y' = (w - y) / 2 (y down), z' = (z + w) / 2.
+const glm::dmat4 kClipToNdc(0.5, 0, 0, 0, 0, -0.5, 0, 0, 0, 0, 0.5, 0, 0.5, 0.5, 0.5, 1);
+
 }  // namespace
+
+void cameraToHeader(const Camera& camera, Imf::Header& header) {
+  header.insert("worldToCamera", Imf::M44fAttribute(toImath(kFlipZ * camera.view)));
+  header.insert("worldToNDC", Imf::M44fAttribute(toImath(kClipToNdc * camera.projection * camera.view)));
+}
 
 std::optional<HeaderCamera> cameraFromHeader(const Imf::Header& header, const std::string& path) {
   try {

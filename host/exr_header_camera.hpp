@@ -12,4 +12,9 @@ namespace ssrcl::detail {
 // the file in HeaderCamera::problem.
 std::optional<HeaderCamera> cameraFromHeader(const Imf::Header& header, const std::string& path);
 
+// Writes `camera` (of the header's display window) as the standard worldToCamera and worldToNDC,
+// which cameraFromHeader reads back. The NDC z row holds OpenGL depth mapped to [0, 1], although
+// readers discard it: the clip planes do not survive the trip.
+void cameraToHeader(const Camera& camera, Imf::Header& header);
+
 }  // namespace ssrcl::detail

@@ -298,16 +298,16 @@ __kernel void trace_rays(int2 size, float16 proj, float16 inv_proj, float near_p
   }
   // A hit on a glossy pixel: its screen colour is what it reflects toward the camera, not toward
   // this pixel. With its non-reflected radiance known (`base`), the hit's radiance is that plus
-  // its specular colour times what one more ray, reflected at the hit, finds (black where that
-  // ray finds nothing, as a black environment). A pixel wrongly marked glossy (a material that
-  // writes no roughness reads 0) has specular colour 0 and keeps its base: its screen colour.
+  // its specular colour times what one more ray, reflected at the hit, finds. Where that ray finds
+  // nothing on screen (confidence c2 < 1) the screen colour stays the best guess for that share.
+  // A pixel wrongly marked glossy (a material that writes no roughness reads 0) has specular
+  // colour 0 and keeps its base: its screen colour.
   cell = clamp(cell, (int2)(0, 0), size - 1);
   int q = cell.y * size.x + cell.x;
   float4 nq = normals[q];
   if (has_base && nq.w < glossy_hit_roughness) {
     float alpha_q = fmax(roughness_to_alpha(nq.w, roughness_mapping), 1e-4f);
     float3 dir2 = reflect_dir(dir, nq.xyz, nq.w <= mirror_roughness, alpha_q, sample_2d(q, sample, seed + 1u));
-    float3 second = (float3)(0.0f);
     ScreenRay ray2;
     int2 cell2;
     float t2 = dot(dir2, dir2) > 0.0f
@@ -315,9 +315,10 @@ __kernel void trace_rays(int2 size, float16 proj, float16 inv_proj, float near_p
                    : -1.0f;
     if (t2 >= 0.0f) {
       cell2 = clamp(cell2, (int2)(0, 0), size - 1);
-      second = color_pyramid[cell2.y * size.x + cell2.x].xyz * edge_confidence(ray_screen(&ray2, t2), size, edge_fade);
+      float c2 = edge_confidence(ray_screen(&ray2, t2), size, edge_fade);
+      float3 bounced = vload3(q, base) + vload3(q, specular) * color_pyramid[cell2.y * size.x + cell2.x].xyz;
+      radiance.xyz = sanitize_radiance3(mix(radiance.xyz, bounced, c2));
     }
-    radiance.xyz = sanitize_radiance3(vload3(q, base) + vload3(q, specular) * second);
   }
   if (counting) count_work(work_counters, gid, &sc);
   ray_hit[record] = (float4)(hit, edge_confidence(s, size, edge_fade));

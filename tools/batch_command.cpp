@@ -12,7 +12,10 @@
 #include "exit_codes.hpp"
 #include "frame_sequence.hpp"
 #include "gbuffer_input.hpp"
+#include "output_location.hpp"
+#include "output_options.hpp"
 #include "progress_line.hpp"
+#include "resume_check.hpp"
 #include "settings_options.hpp"
 #include "stop_signal.hpp"
 
@@ -24,6 +27,7 @@ struct BatchOptions {
   std::string device, shard = "0/1", report;
   GBufferInputOptions in;
   SettingsOptions settings;
+  OutputOptions out;
   // Readers and as many writers; a quarter of the cores leaves the rest to a CPU device.
   int ioThreads = int(std::clamp(std::thread::hardware_concurrency() / 4, 1u, 4u));
   bool overwrite = false, failFast = false, quiet = false, dryRun = false;
@@ -53,6 +57,11 @@ int runBatch(const BatchOptions& o) {
     else
       toRun.push_back(&jobs[i]);
   }
+  OutputRecord record{o.settings.quality, o.in.applyTo(o.settings.resolve()), ""};
+  for (size_t i = 0; i < jobs.size() && !o.dryRun; ++i)
+    if (outcomes[i].status == FrameStatus::Skipped)
+      if (const std::string problem = resumeMismatch(jobs[i].output, jobs[i].input, o.out, record); !problem.empty())
+        throw Error(ErrorCode::InvalidArgument, problem);
   if (o.dryRun) {
     for (size_t i = 0; i < jobs.size(); ++i)
       std::cout << jobs[i].name << "\t" << jobs[i].input << "\t" << jobs[i].camera << "\t" << jobs[i].output << "\t"
@@ -64,9 +73,15 @@ int runBatch(const BatchOptions& o) {
   BatchRun run;
   std::string deviceName;
   if (!toRun.empty()) {
+    for (const FrameJob* job : toRun)
+      if (const std::string problem = outputLocationProblem(job->output, true); !problem.empty()) {
+        std::cerr << "ssrcl: " << problem << "\n";
+        return kExitOutput;
+      }
     Device device = openDevice(o.device);
     deviceName = device.info().name;
-    BatchRunner runner(device, o.in, o.settings.resolve(), o.failFast, o.ioThreads);
+    record.device = deviceName;
+    BatchRunner runner(device, o.in, record, o.out, o.failFast, o.ioThreads);
     removeStaleTemporaries(toRun);
     ProgressLine progress(toRun.size(), !o.quiet);
     size_t finished = 0, failed = 0;
@@ -122,6 +137,7 @@ Action addBatchCommand(CLI::App& app) {
   cmd->add_flag("--dry-run", o->dryRun, "List name, input, camera, output and run/skip for each frame; run nothing");
   addChannelOptions(*cmd, o->in);
   addSettingsOptions(*cmd, o->settings);
+  addOutputOptions(*cmd, o->out);
   return [o] { return runBatch(*o); };
 }
 

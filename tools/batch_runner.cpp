@@ -65,10 +65,15 @@ const char* statusName(FrameStatus status) {
   return "?";
 }
 
-BatchRunner::BatchRunner(const Device& device, const GBufferInputOptions& input, const TraceSettings& settings,
-                         bool failFast, int ioThreads)
-    : pipeline_(device), input_(input), failFast_(failFast), ioThreads_(std::max(1, ioThreads)) {
-  pipeline_.settings() = input.applyTo(settings);
+BatchRunner::BatchRunner(const Device& device, const GBufferInputOptions& input, const OutputRecord& record,
+                         const OutputOptions& output, bool failFast, int ioThreads)
+    : pipeline_(device),
+      input_(input),
+      record_(record),
+      output_(output),
+      failFast_(failFast),
+      ioThreads_(std::max(1, ioThreads)) {
+  pipeline_.settings() = record.settings;
 }
 
 BatchRun BatchRunner::run(const std::vector<FrameJob>& jobs, std::vector<FrameOutcome>& outcomes,
@@ -115,7 +120,9 @@ BatchRun BatchRunner::run(const std::vector<FrameJob>& jobs, std::vector<FrameOu
         attempt(*f, f->outcome.writeSeconds, kExitOutput, [&] {
           const std::filesystem::path parent = std::filesystem::path(jobs[f->index].output).parent_path();
           if (!parent.empty()) std::filesystem::create_directories(parent);
-          writeReflectionExr(jobs[f->index].output, f->reflection, f->distance, f->frame.windows);
+          const FrameJob& job = jobs[f->index];
+          writeReflectionExr(job.output, f->reflection, f->distance,
+                             writerOptions(output_, record_, job.input, input_.sourceFor(job.input), f->frame));
         });
         finish(*f);
       }

@@ -5,6 +5,7 @@
 
 #include "batch_plan.hpp"
 #include "gbuffer_input.hpp"
+#include "output_options.hpp"
 #include "ssrcl/device.hpp"
 #include "ssrcl/pipeline.hpp"
 
@@ -36,8 +37,9 @@ struct BatchRun {
 // threads read the next frames and as many write the previous ones.
 class BatchRunner {
  public:
-  BatchRunner(const Device& device, const GBufferInputOptions& input, const TraceSettings& settings, bool failFast,
-              int ioThreads);
+  // Frames are traced with `record.settings` and written as `output` asks, with `record`.
+  BatchRunner(const Device& device, const GBufferInputOptions& input, const OutputRecord& record,
+              const OutputOptions& output, bool failFast, int ioThreads);
 
   // Processes, in order, the jobs whose outcome is NotRun and records their outcomes. Starts no
   // new frame once stopRequested() is true; the frame on the device is finished and written.
@@ -48,6 +50,8 @@ class BatchRunner {
  private:
   Pipeline pipeline_;
   GBufferInputOptions input_;
+  OutputRecord record_;
+  OutputOptions output_;
   bool failFast_;
   int ioThreads_;
 };

@@ -66,6 +66,10 @@ void addChannelOptions(CLI::App& cmd, GBufferInputOptions& o) {
   cmd.add_option("--roughness", o.roughness, "Constant roughness for every pixel instead of a channel")
       ->group(in)
       ->check(CLI::Range(0.0f, 1.0f));
+  cmd.add_flag("!--no-glossy-passes", o.source.glossyPasses,
+               "Ignore Blender's glossy passes (GlossDir/GlossInd/GlossCol): hits on glossy surfaces then take their "
+               "screen colour instead of a second bounce")
+      ->group(in);
   cmd.add_flag("!--no-input-check", o.inputCheck,
                "Trace even when the normal pass disagrees with the depth under the declared conventions")
       ->group(in);
@@ -112,6 +116,8 @@ Frame loadFrame(const GBufferInputOptions& o, const std::string& input, const st
                                              sizeText(g.displayWindow.width(), g.displayWindow.height()));
 
   frame.windows = {g.dataWindow, g.displayWindow};
+  frame.displayCamera = display;
+  frame.cameraSource = cameraName;
   frame.camera = g.dataWindow == g.displayWindow ? display : reframeCamera(display, g.displayWindow, g.dataWindow);
   if (o.inputCheck) checkInputConventions(g, source, frame.camera);
   applyInputConventions(g, source, frame.camera);

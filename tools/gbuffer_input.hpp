@@ -37,7 +37,9 @@ std::string sidecarCameraPath(const std::string& exr);
 struct Frame {
   GBuffer gbuffer;
   Camera camera;
-  ExrWindows windows;  // the input's, for the output
+  ExrWindows windows;    // the input's, for the output
+  Camera displayCamera;  // the camera of the display window, written into the output's header
+  std::string cameraSource;  // the camera file, or which header attributes it came from
 };
 
 // Reads a frame's passes and its camera: the JSON at `cameraPath`, or, when that file does not

@@ -7,6 +7,8 @@
 #include "device_option.hpp"
 #include "exit_codes.hpp"
 #include "gbuffer_input.hpp"
+#include "output_location.hpp"
+#include "output_options.hpp"
 #include "settings_options.hpp"
 #include "ssrcl/ssrcl.hpp"
 
@@ -17,6 +19,7 @@ struct TraceOptions {
   std::string input, output, camera, device;
   GBufferInputOptions in;
   SettingsOptions settings;
+  OutputOptions out;
   bool stats = false;
 };
 
@@ -29,6 +32,10 @@ int runTrace(TraceOptions& o) {
   std::error_code ec;
   if (std::filesystem::equivalent(o.output, mainFile, ec))
     throw Error(ErrorCode::InvalidArgument, o.output + ": refusing to overwrite the input G-buffer");
+  if (const std::string problem = outputLocationProblem(o.output, false); !problem.empty()) {
+    std::cerr << "ssrcl: " << problem << "\n";
+    return kExitOutput;
+  }
 
   const Frame frame = loadFrame(o.in, o.input, cameraPath, o.camera.empty());
   const Camera& camera = frame.camera;
@@ -40,9 +47,12 @@ int runTrace(TraceOptions& o) {
   pipeline.commit();
   pipeline.execute();
 
+  const OutputRecord record{o.settings.quality, pipeline.settings(), device.info().name};
+  const ReflectionExrOptions written = writerOptions(o.out, record, mainFile, o.in.sourceFor(o.input), frame);
   try {
-    writeReflectionExr(o.output, pipeline.output("reflection"), pipeline.output("distance"), frame.windows);
+    writeReflectionExr(o.output, pipeline.output("reflection"), pipeline.output("distance"), written);
   } catch (const Error& e) {
+    if (e.code() != ErrorCode::IoError) throw;  // a file that cannot be appended to is bad input
     std::cerr << "ssrcl: " << e.what() << "\n";
     return kExitOutput;
   }
@@ -71,6 +81,7 @@ Action addTraceCommand(CLI::App& app) {
   addChannelOptions(*cmd, o->in);
   addPassFileOptions(*cmd, o->in);
   addSettingsOptions(*cmd, o->settings);
+  addOutputOptions(*cmd, o->out);
   cmd->add_flag("--stats", o->stats, "Print per-stage device times (OpenCL profiling) to stderr");
   return [o] { return runTrace(*o); };
 }

@@ -45,6 +45,11 @@ struct GBufferSource {
   std::string positionFile;
   DepthKind depthKind = DepthKind::Planar;
   NormalSpace normalSpace = NormalSpace::World;
+
+  // Where the colour's file has Blender's glossy passes ({layer}.GlossDir, GlossInd and GlossCol,
+  // R,G,B each), GBuffer::base and GBuffer::specular are made from them, for hits on glossy
+  // surfaces: base = color - GlossCol * (GlossDir + GlossInd), specular = GlossCol.
+  bool glossyPasses = true;
 };
 
 // The camera an EXR header describes, for its display window: OpenEXR's standard worldToCamera

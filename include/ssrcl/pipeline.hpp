@@ -60,7 +60,7 @@ struct TraceSettings {
   // they reflect toward the camera. With the "base" and "specular" images set, such a hit's
   // radiance is base + specular * (what one more ray reflected at the hit finds); without them,
   // or at 0, hits take the screen colour. Corpus (mirror_panels): +1.2 dB.
-  float glossyHitRoughness = 0.5f;
+  float glossyHitRoughness = 0.1f;
 
   int samplesPerPixel = 4;  // rays per glossy pixel
   // > 0: ray counts follow roughness. Glossy pixels at or above this roughness get samplesPerPixel

@@ -3,6 +3,7 @@
 #include "ssrcl/camera.hpp"
 #include "ssrcl/device.hpp"
 #include "ssrcl/error.hpp"
+#include "ssrcl/exr_output.hpp"
 #include "ssrcl/image.hpp"
 #include "ssrcl/io.hpp"
 #include "ssrcl/pipeline.hpp"

@@ -1,0 +1,57 @@
+#include "resume_check.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include "settings_json.hpp"
+
+namespace ssrcl::cli {
+namespace {
+
+std::string differs(const std::string& output, const std::string& what, const std::string& recorded,
+                    const std::string& asked) {
+  return output + ": exists with " + what + " " + recorded + ", but " + asked +
+         " is asked now; give --overwrite to recompute it";
+}
+
+}  // namespace
+
+std::string resumeMismatch(const std::string& output, const std::string& input, const OutputOptions& o,
+                           const OutputRecord& asked) {
+  const ExrDescription d = describeExr(output);
+  const auto attribute = [&](const char* name) -> const std::string* {
+    const auto it = d.stringAttributes.find(name);
+    return it == d.stringAttributes.end() ? nullptr : &it->second;
+  };
+  const std::string* preset = attribute("ssrcl/preset");
+  const std::string* settings = attribute("ssrcl/settings");
+  if (!preset || !settings)
+    return output + ": exists without ssrcl's record of how it was made (written by an older ssrcl or "
+                    "another tool), so resuming cannot tell whether it matches; give --overwrite to recompute it";
+  if (*preset != asked.preset) return differs(output, "preset", *preset, asked.preset);
+
+  const nlohmann::ordered_json recorded = nlohmann::ordered_json::parse(*settings, nullptr, false);
+  if (recorded.is_discarded() || !recorded.is_object())
+    return output + ": its ssrcl/settings record is not a JSON object; give --overwrite to recompute it";
+  const nlohmann::ordered_json now = settingsJson(asked.settings);
+  for (const auto& [key, value] : now.items()) {
+    const auto it = recorded.find(key);
+    if (it == recorded.end())
+      return output + ": its ssrcl/settings record has no '" + key + "' (an older ssrcl); give --overwrite to recompute it";
+    if (*it != value) return differs(output, key, it->dump(), value.dump());
+  }
+
+  const std::string layer = o.layerWritten();
+  const std::string prefix = layer.empty() ? "" : layer + ".";
+  const auto alpha = d.channelIsHalf.find(prefix + "A");
+  if (alpha == d.channelIsHalf.end() || !d.channelIsHalf.count(prefix + "distance"))
+    return output + ": exists without the channels " + prefix + "A and " + prefix +
+           "distance of the asked output layer '" + layer + "'; give --overwrite to recompute it";
+  if (alpha->second != o.half)
+    return differs(output, "channel type", alpha->second ? "half" : "float", o.half ? "half" : "float");
+  const std::string compression =
+      !o.compression.empty() ? o.compression : o.append ? describeExr(input).compression : "zip";
+  if (d.compression != compression) return differs(output, "compression", d.compression, compression);
+  return {};
+}
+
+}  // namespace ssrcl::cli
