@@ -5,6 +5,7 @@
 // for what is compared with what, and scripts/score-corpus.sh for the command.
 //
 //   ssrcl_score_corpus --corpus samples/corpus [--configs medium,high,...] [--scenes a,b] [--json out.json]
+//   ssrcl_score_corpus render.exr ... [--configs ...]   (renders of one's own, split "file")
 //
 // A configuration is a preset name, optionally with settings after a colon:
 //   medium   high:spp=32   medium:thickness=0.01   medium:model=constant,thickness=0.005
@@ -170,7 +171,9 @@ int main(int argc, char** argv) {
   std::string corpus = std::string(SSRCL_SOURCE_DIR) + "/samples/corpus", jsonPath, plotPath;
   std::string configList = "draft,medium,high,reference,eevee", sceneList;
   std::string dumpDir;
+  std::vector<std::string> files;
   int repetitions = 1;
+  app.add_option("files", files, "Renders to score instead of the corpus (Blender passes, IndexOB 1 = reflector)");
   app.add_option("--corpus", corpus, "Directory with corpus.json and the scenes")->capture_default_str();
   app.add_option("--configs", configList, "Comma-separated configurations (';' also separates)")->capture_default_str();
   app.add_option("--scenes", sceneList, "Only these scenes (comma-separated)");
@@ -185,7 +188,9 @@ int main(int argc, char** argv) {
     std::vector<Config> configs;
     for (const std::string& spec : splitList(configList, configList.find(';') != std::string::npos ? ';' : ','))
       configs.push_back(parseConfig(spec));
-    const std::vector<Scene> scenes = loadScenes(corpus, splitList(sceneList, ','));
+    std::vector<Scene> scenes;
+    for (const std::string& f : files) scenes.push_back({std::filesystem::path(f).stem().string(), "file", f});
+    if (files.empty()) scenes = loadScenes(corpus, splitList(sceneList, ','));
     if (scenes.empty()) throw std::runtime_error("no scenes selected");
 
     ssrcl::Device device(ssrcl::DeviceType::Default);
@@ -199,7 +204,8 @@ int main(int argc, char** argv) {
       for (size_t c = 0; c < configs.size(); ++c) {
         Score& score = scores[c][s];
         if (configs[c].eevee) {
-          const std::string path = corpus + "/" + scenes[s].name + ".eevee.exr";
+          const std::string path =
+              (std::filesystem::path(scenes[s].path).parent_path() / (scenes[s].name + ".eevee.exr")).string();
           if (!std::filesystem::exists(path)) continue;
           score.error = ssrcl::test::referenceError(ref, eeveePass(path), all);
           score.present = true;
@@ -270,6 +276,7 @@ int main(int argc, char** argv) {
                                   {"ms", sc.ms},
                                   {"psnr_db", sc.error.psnr},
                                   {"rmse", sc.error.rmse},
+                                  {"bias", sc.error.bias},
                                   {"low_confidence_share", sc.error.lowConfidence},
                                   {"p99_relative", sc.error.p99}});
       }

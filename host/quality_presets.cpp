@@ -23,7 +23,6 @@ TraceSettings qualityPreset(const std::string& name) {
     s.maxIterations = 1 << 20;
     s.samplesPerPixel = 256;
     s.reuseRadius = 0;
-    s.prefilter = false;
     s.denoise = false;
     return s;
   }

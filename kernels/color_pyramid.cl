@@ -33,7 +33,9 @@ inline float4 pyramid_bilinear(__global const float4* pyramid, __global const Hz
   return mix(top, bottom, f.y);
 }
 
-// Trilinear lookup at a fractional level of detail, coverage divided out.
+// Trilinear lookup at a fractional level of detail, coverage divided out: the mean colour of
+// the surfaces in the footprint. (Counting the sky's share as missed would be biased: rays that
+// miss near a surface get no lookup to add theirs back.)
 inline float4 pyramid_sample(__global const float4* pyramid, __global const HzbLevel* levels, int level_count,
                              float2 pixel, float lod) {
   lod = clamp(lod, 0.0f, (float)(level_count - 1));

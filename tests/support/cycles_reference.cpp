@@ -113,7 +113,7 @@ CyclesReference loadCyclesReference(const std::string& exr, const std::string& c
     }
   }
 
-  AlbedoTable albedo;
+  static AlbedoTable albedo;  // shared by every render a program loads
   std::map<float, std::vector<size_t>> byRoughness;
   std::vector<double> values;
   for (int i = 0; i < w * h; ++i) {
@@ -155,7 +155,7 @@ CyclesReference loadCyclesReference(const std::string& exr, const std::string& c
 }
 
 ReferenceError referenceError(const CyclesReference& ref, const Image& reflection, const std::vector<size_t>& group) {
-  double se = 0, seLow = 0, abs = 0;
+  double se = 0, seLow = 0, abs = 0, signedSum = 0;
   std::vector<double> perPixel;
   perPixel.reserve(group.size());
   for (size_t k : group) {
@@ -166,6 +166,7 @@ ReferenceError referenceError(const CyclesReference& ref, const Image& reflectio
       const double diff = ours - ref.cycles[3 * k + c];
       pixelSe += diff * diff;
       pixelAbs += std::abs(diff);
+      signedSum += diff;
     }
     se += pixelSe;
     abs += pixelAbs;
@@ -176,6 +177,7 @@ ReferenceError referenceError(const CyclesReference& ref, const Image& reflectio
   ReferenceError e;
   e.rmse = std::sqrt(se / n);
   e.meanAbs = abs / n;
+  e.bias = signedSum / n;
   e.psnr = 20 * std::log10(ref.peak / std::max(e.rmse, 1e-30));
   e.lowConfidence = se > 0 ? seLow / se : 0;
   if (!perPixel.empty()) {

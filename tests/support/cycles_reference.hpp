@@ -40,6 +40,7 @@ CyclesReference loadCyclesReference(const std::string& exr, const std::string& c
 // Error of specular * E * our rgb against Cycles over a group of reference pixels.
 struct ReferenceError {
   double rmse = 0, meanAbs = 0;
+  double bias = 0;             // mean of (ours - Cycles): negative where the pass is too dark
   double psnr = 0;             // dB, peak = ref.peak
   double lowConfidence = 0;    // share of the squared error on pixels with A < 0.5
   double p99 = 0;              // 99th percentile of per-pixel mean |error|, relative to the peak

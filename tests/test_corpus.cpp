@@ -1,0 +1,101 @@
+// The CI subset of the Cycles corpus (samples/corpus, scored in full by scripts/score-corpus.sh):
+// the defaults against Cycles' path-traced glossy passes on scenes that pull the surface model in
+// opposite directions (tabletop_cm wants thick surfaces, thin_objects thin ones,
+// mirror_glossy_tiles thin silhouettes) and on the speckle case (night_street). Bounds sit just
+// under the figures measured on PoCL (in comments); a wrong thickness model, cone or resolve moves
+// them by far more (docs/BENCHMARKS.md, corpus table).
+#include <gtest/gtest.h>
+
+#include <iostream>
+#include <map>
+
+#include "ssrcl/ssrcl.hpp"
+#include "support/cycles_reference.hpp"
+#include "support/test_device.hpp"
+
+namespace {
+
+using ssrcl::test::CyclesReference;
+using ssrcl::test::ReferenceError;
+
+const std::string kCorpus = std::string(SSRCL_SOURCE_DIR) + "/samples/corpus/";
+
+struct Scored {
+  CyclesReference ref;
+  std::map<std::string, ReferenceError> errors;
+};
+
+// Each scene traced with the default settings and with a constant thickness of 0.2%, 1% and 5% of
+// depth (everything else default).
+const Scored& scored(const std::string& scene) {
+  static std::map<std::string, Scored> cache;
+  auto it = cache.find(scene);
+  if (it != cache.end()) return it->second;
+  Scored& s = cache[scene];
+  s.ref = ssrcl::test::loadCyclesReference(kCorpus + scene + ".exr");
+  ssrcl::Device device = ssrcl::test::testDevice();
+  ssrcl::Pipeline p(device);
+  p.setGBuffer(s.ref.gbuffer);
+  p.setImage("base", s.ref.base);  // as `ssrcl trace` reads the render's glossy passes
+  p.setImage("specular", s.ref.specular);
+  p.setCamera(s.ref.camera);
+  auto run = [&](const std::string& name, const ssrcl::TraceSettings& settings) {
+    p.settings() = settings;
+    p.commit();
+    p.execute();
+    s.errors[name] = ssrcl::test::referenceError(s.ref, p.output("reflection"), s.ref.groups.front().second);
+    std::cout << scene << " " << name << ": PSNR " << s.errors[name].psnr << " dB, p99 " << s.errors[name].p99 << "\n";
+  };
+  run("default", ssrcl::TraceSettings{});
+  for (float t : {0.002f, 0.01f, 0.05f}) {
+    ssrcl::TraceSettings c;
+    c.thicknessModel = ssrcl::ThicknessModel::Constant;
+    c.thicknessRelative = t;
+    run("constant " + std::to_string(t).substr(0, 5), c);
+  }
+  ssrcl::TraceSettings unfiltered;
+  unfiltered.prefilter = false;
+  run("no prefilter", unfiltered);
+  return s;
+}
+
+double bestConstant(const Scored& s) {
+  double best = -1e9;
+  for (const auto& [name, e] : s.errors)
+    if (name.rfind("constant", 0) == 0) best = std::max(best, e.psnr);
+  return best;
+}
+
+// The adaptive thickness model stays within 0.3 dB of the best constant on each scene (the issue's
+// bound), and clearly above the old default of 0.2% where that one fails.
+TEST(Corpus, AdaptiveThicknessHoldsAgainstEachScenesBestConstant) {
+  for (const std::string scene : {"tabletop_cm", "thin_objects", "mirror_glossy_tiles"}) {
+    const Scored& s = scored(scene);
+    EXPECT_GE(s.errors.at("default").psnr, bestConstant(s) - 0.3) << scene;
+  }
+  // Measured: tabletop_cm 24.8 dB default against 20.6 at 0.2%; mirror_glossy_tiles 32.2 vs 30.0.
+  EXPECT_GT(scored("tabletop_cm").errors.at("default").psnr, scored("tabletop_cm").errors.at("constant 0.002").psnr + 3.0);
+  EXPECT_GT(scored("mirror_glossy_tiles").errors.at("default").psnr,
+            scored("mirror_glossy_tiles").errors.at("constant 0.002").psnr + 1.5);
+}
+
+// Absolute floors at the measured PSNR, less 0.3 dB for device and driver differences.
+TEST(Corpus, DefaultsMeetMeasuredAccuracy) {
+  const std::map<std::string, double> measured = {
+      {"tabletop_cm", 24.80}, {"thin_objects", 25.28}, {"mirror_glossy_tiles", 32.22}, {"night_street", 24.73}};
+  for (const auto& [scene, psnr] : measured) EXPECT_GE(scored(scene).errors.at("default").psnr, psnr - 0.3) << scene;
+}
+
+// Speckle: rough ground reflecting small bright neon. The prefiltered lookup cuts the 99th
+// percentile of per-pixel error (measured 0.308 -> 0.178 of the peak) and raises PSNR (19.9 ->
+// 24.7 dB); it darkens the pass a little on average (mean signed error -0.026 against -0.001,
+// peak 2.02): the price of the cone's averaging, bounded here at 2% of the peak.
+TEST(Corpus, PrefilterRemovesSpeckle) {
+  const Scored& s = scored("night_street");
+  const ReferenceError on = s.errors.at("default"), off = s.errors.at("no prefilter");
+  EXPECT_LT(on.p99, 0.65 * off.p99);
+  EXPECT_GT(on.psnr, off.psnr + 4.0);
+  EXPECT_LT(std::abs(on.bias), 0.02 * s.ref.peak);
+}
+
+}  // namespace
