@@ -378,6 +378,16 @@ GBuffer loadGBuffer(const GBufferSource& source) {
     }
   }
 
+  // With positions, a depth pass in the same file is read too: the input check compares the two.
+  if (!source.positionChannels.empty()) {
+    const std::string& path = source.positionFile.empty() ? source.file : source.positionFile;
+    const std::string name = !source.depthChannel.empty() ? source.depthChannel
+                             : source.layer.empty()       ? std::string("Z")
+                                                          : source.layer + ".Depth.Z";
+    if (!path.empty() && files.try_emplace(path, path).first->second.find(name).part >= 0)
+      passes.push_back({"depth", &gbuffer.depth, 1, source.positionFile, source.depthChannel, "Depth.Z", "Z"});
+  }
+
   std::vector<Request> requests;
   for (const Pass& pass : passes) {
     const std::string& path = pass.file.empty() ? source.file : pass.file;

@@ -86,6 +86,35 @@ InputCheckReport checkInputConventions(const GBuffer& g, const GBufferSource& so
   if (camera.width != geometry.width || camera.height != geometry.height)
     throw Error(ErrorCode::InvalidArgument, "checkInputConventions: camera and G-buffer sizes differ");
 
+  // Positions and a depth pass in one file must give the same depth (read as planar or radial,
+  // whichever fits): else the positions are not world space or the camera is not the render's.
+  if (fromPositions && !g.depth.empty()) {
+    const Image fromP = detail::planarFromPositions(g.position, camera);
+    const Image radial = detail::planarFromRadial(g.depth, camera);
+    std::vector<double> planarOff, radialOff;
+    const int step = std::max<int>(1, int(g.depth.data.size() / kMaxSamples));
+    for (std::size_t i = 0; i < g.depth.data.size(); i += step) {
+      const double p = fromP.data[i], d = g.depth.data[i], r = radial.data[i];
+      if (!(p > 0.0 && p < 1e9 && d > 0.0 && d < 1e9 && std::isfinite(r))) continue;
+      planarOff.push_back(std::abs(p - d) / d);
+      radialOff.push_back(std::abs(p - r) / r);
+    }
+    const auto median = [](std::vector<double>& v) {
+      std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+      return v[v.size() / 2];
+    };
+    if (planarOff.size() >= 64) {
+      const double planar = median(planarOff), rad = median(radialOff);
+      if (std::min(planar, rad) > 0.01)
+        throw Error(ErrorCode::InvalidInput,
+                    (source.positionFile.empty() ? source.file : source.positionFile) +
+                        ": the position pass disagrees with the depth pass (median depth difference " +
+                        degrees(100 * planar) + "% read as planar depth, " + degrees(100 * rad) +
+                        "% as radial): the positions are not in world space or the camera does not match the "
+                        "render; check --position and --camera (or --no-input-check to trace anyway)");
+    }
+  }
+
   // Depth readings: the pass as planar and as radial (positions have one reading).
   std::vector<std::pair<std::string, Image>> depths;
   if (fromPositions) {

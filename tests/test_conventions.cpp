@@ -69,9 +69,10 @@ std::vector<float> radialDepth(const Sample& s) {
   return r;
 }
 
-std::vector<ExrChannel> positions(const Sample& s, const std::string& prefix) {
+// World-space positions; with `eye`, camera (OpenGL eye) space instead: a wrongly written P pass.
+std::vector<ExrChannel> positions(const Sample& s, const std::string& prefix, bool eye = false) {
   std::vector<float> p[3];
-  const glm::dmat4 eyeToWorld = glm::inverse(s.camera.view);
+  const glm::dmat4 eyeToWorld = eye ? glm::dmat4(1.0) : glm::inverse(s.camera.view);
   for (int i = 0; i < s.w * s.h; ++i) {
     const glm::dvec3 world = s.sky(i) ? glm::dvec3(0.0) : glm::dvec3(eyeToWorld * glm::dvec4(s.eyePoint(i), 1.0));
     for (int c = 0; c < 3; ++c) p[c].push_back(float(world[c]));
@@ -297,6 +298,18 @@ TEST_P(Conventions, PositionsInsteadOfDepth) {
                                  {}, &s.camera);
   expectSameAsOriginal(in, "--position P.X,P.Y,P.Z --normal-space camera-gl");
   expectRefused(in, "--position P.X,P.Y,P.Z", "normal pass", "--normal-space camera-gl");
+}
+
+// A file with both positions and a depth pass: they must agree. World positions beside the depth
+// trace as the original; eye-space positions written as P are refused, naming both passes.
+TEST_P(Conventions, PositionsCheckedAgainstDepth) {
+  const Sample& s = sample();
+  const std::vector<ExrChannel> common = baseChannels(s, kBlender + "Combined.", kBlender + "roughness.X") +
+                                         std::vector<ExrChannel>{{kBlender + "Depth.Z", s.channel(s.g.depth, 0)}} +
+                                         worldNormals(s, kBlender + "Normal.");
+  expectSameAsOriginal(variant("p-and-z", common + positions(s, "P."), {}, &s.camera), "--position P.X,P.Y,P.Z");
+  expectRefused(variant("eye-p-and-z", common + positions(s, "P.", true), {}, &s.camera), "--position P.X,P.Y,P.Z",
+                "position pass disagrees with the depth pass", "--position");
 }
 
 // RenderMan's conventions: planar z, camera-space Nn (+z forward), worldToCamera + worldToNDC.

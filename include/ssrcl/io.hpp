@@ -67,7 +67,9 @@ struct HeaderCamera {
 
 struct GBuffer {
   Image color;      // 3 channels
-  Image depth;      // 1 channel: as declared until applyInputConventions, then planar view depth
+  // 1 channel: as declared until applyInputConventions, then planar view depth. With positions it
+  // holds the file's depth pass where it has one (for the input check) until then.
+  Image depth;
   Image normal;     // 3 channels: as declared until applyInputConventions, then world space
   Image roughness;  // 1 channel; empty when constantRoughness was given
   // Optional, for hits on glossy surfaces (TraceSettings::glossyHitRoughness): radiance without
