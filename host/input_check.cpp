@@ -72,7 +72,7 @@ std::vector<glm::dvec3> geometricNormals(const Image& planar, const Camera& came
 
 std::string describe(const Hypothesis& h) { return h.depth + " depth, " + h.normals + " normals"; }
 
-std::string degrees(double value) {
+std::string decimal(double value) {
   char text[32];
   std::snprintf(text, sizeof text, value < 1.0 && value > -1.0 ? "%.2f" : "%.1f", value);
   return text;
@@ -109,7 +109,7 @@ InputCheckReport checkInputConventions(const GBuffer& g, const GBufferSource& so
         throw Error(ErrorCode::InvalidInput,
                     (source.positionFile.empty() ? source.file : source.positionFile) +
                         ": the position pass disagrees with the depth pass (median depth difference " +
-                        degrees(100 * planar) + "% read as planar depth, " + degrees(100 * rad) +
+                        decimal(100 * planar) + "% read as planar depth, " + decimal(100 * rad) +
                         "% as radial): the positions are not in world space or the camera does not match the "
                         "render; check --position and --camera (or --no-input-check to trace anyway)");
     }
@@ -226,9 +226,9 @@ InputCheckReport checkInputConventions(const GBuffer& g, const GBufferSource& so
   const std::string normalFile = source.normalFile.empty() ? source.file : source.normalFile;
   const std::string skip = " (or --no-input-check to trace anyway)";
   const std::string fits = "normals derived from the depth differ from the normal pass by " +
-                           degrees(meanAngle[declared]) + " degrees on average as declared (" +
-                           describe(hypotheses[declared]) + "), " + degrees(meanAngle[preferred]) + " as " +
-                           describe(hypotheses[preferred]) + " (score " + degrees(score[preferred]) + " of 1)";
+                           decimal(meanAngle[declared]) + " degrees on average as declared (" +
+                           describe(hypotheses[declared]) + "), " + decimal(meanAngle[preferred]) + " as " +
+                           describe(hypotheses[preferred]) + " (score " + decimal(score[preferred]) + " of 1)";
   if (preferred != declared) {
     const Hypothesis& b = hypotheses[preferred];
     if (b.negatedAxis >= 0)
@@ -251,7 +251,7 @@ InputCheckReport checkInputConventions(const GBuffer& g, const GBufferSource& so
   if (meanAngle[best] > kNothingFitsDegrees)
     throw Error(ErrorCode::InvalidInput,
                 depthFile + ": the depth and normal passes disagree under every convention (best " +
-                    degrees(meanAngle[best]) + " degrees, as " + describe(hypotheses[best]) +
+                    decimal(meanAngle[best]) + " degrees, as " + describe(hypotheses[best]) +
                     "): the camera probably does not match the render; check --camera or the header camera" + skip);
   return report;
 }
