@@ -212,8 +212,8 @@ int main(int argc, char** argv) {
           continue;
         }
         const ssrcl::Image none;
-        pipeline.setImage("base", configs[c].glossyPasses ? ref.base : none);
-        pipeline.setImage("specular", configs[c].glossyPasses ? ref.specular : none);
+        pipeline.setImage("base", configs[c].glossyPasses ? ref.gbuffer.base : none);
+        pipeline.setImage("specular", configs[c].glossyPasses ? ref.gbuffer.specular : none);
         pipeline.settings() = configs[c].settings;
         pipeline.commit();
         score.ms = INFINITY;

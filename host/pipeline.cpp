@@ -89,6 +89,10 @@ struct Pipeline::Impl {
 
   explicit Impl(const Device& d) : device(d) {}
 
+  bool hasInput(const std::string& name) const {
+    auto it = inputs.find(name);
+    return it != inputs.end() && !it->second->empty();
+  }
   void validateSettings() const;
   void validate();
   void allocate();
@@ -171,20 +175,15 @@ void Pipeline::Impl::validate() {
 
   const bool needRoughness = s.constantRoughness < 0.0f;
   const std::array<int, 6> expectedChannels = {3, 1, 3, 1, 3, 3};
-  auto given = [&](const char* name) {
-    auto it = inputs.find(name);
-    return it != inputs.end() && !it->second->empty();
-  };
-  if (given("base") != given("specular"))
+  if (hasInput("base") != hasInput("specular"))
     throw Error(ErrorCode::InvalidArgument, "pipeline: input images 'base' and 'specular' go together");
   for (size_t k = 0; k < kInputNames.size(); ++k) {
     const std::string name = kInputNames[k];
-    auto it = inputs.find(name);
-    if (it == inputs.end() || it->second->empty()) {
+    if (!hasInput(name)) {
       if ((name == "roughness" && !needRoughness) || name == "base" || name == "specular") continue;
       throw Error(ErrorCode::InvalidArgument, "pipeline: input image '" + name + "' not set");
     }
-    const Image& img = *it->second;
+    const Image& img = *inputs.at(name);
     bool channelsOk = name == "color" ? (img.channels == 3 || img.channels == 4) : img.channels == expectedChannels[k];
     if (!channelsOk)
       throw Error(ErrorCode::InvalidArgument,
@@ -205,7 +204,7 @@ void Pipeline::Impl::allocate() {
   width = camera.width;
   height = camera.height;
   colorChannels = inputs.at("color")->channels;
-  hasBase = inputs.count("base") && !inputs.at("base")->empty();
+  hasBase = hasInput("base");
   levels = hzbLevels(width, height);
   tilesX = (width + kTile - 1) / kTile;
   tilesY = (height + kTile - 1) / kTile;

@@ -200,17 +200,20 @@ inline float trace_from(TraceScene* sc, float16 proj, float near_plane, float fa
                        : trace_hiz(sc, ray, dir, cell);
 }
 
-// Direction a surface with normal n and GGX alpha reflects light arriving along `incoming`: the
-// mirror direction, or one visible-normal sample of its lobe. Zero when the sample points below it.
-inline float3 reflect_dir(float3 incoming, float3 n, bool mirror, float alpha, float2 u) {
-  float3 o = -incoming;
+// The direction a surface with normal n and GGX alpha reflects toward o (unit, away from it): the
+// exact mirror direction (pdf 0: a delta), or a visible-normal sample of its lobe drawn with u and
+// its pdf. Zero where the sample points below the surface (zero BRDF weight, nothing to trace).
+inline float3 sample_reflection(float3 o, float3 n, bool mirror, float alpha, float2 u, float* pdf) {
+  *pdf = 0.0f;
   if (mirror) return 2.0f * dot(o, n) * n - o;
   float3 tx, ty;
   basis_from_normal(n, &tx, &ty);
   float3 ol = (float3)(dot(o, tx), dot(o, ty), dot(o, n));
   float3 h = ggx_sample_vndf(ol, alpha, u);
   float3 ll = 2.0f * dot(ol, h) * h - ol;
-  return ll.z > 0.0f ? normalize(ll.x * tx + ll.y * ty + ll.z * n) : (float3)(0.0f);
+  if (ll.z <= 0.0f) return (float3)(0.0f);
+  *pdf = ggx_vndf_pdf_from_half(ol, h, alpha);
+  return normalize(ll.x * tx + ll.y * ty + ll.z * n);
 }
 
 // Counting mode: per-ray texel reads summed over 1024 slots (32-bit atomics that cannot
@@ -257,20 +260,9 @@ __kernel void trace_rays(int2 size, float16 proj, float16 inv_proj, float near_p
   // Mirror-like pixels have one ray, the exact mirror direction.
   bool mirror = nr.w <= mirror_roughness;
   float alpha = fmax(roughness_to_alpha(nr.w, roughness_mapping), 1e-4f);
-  float3 dir;
-  float pdf = 0.0f;
-  if (mirror) {
-    dir = 2.0f * dot(o, n) * n - o;
-  } else {
-    float3 tx, ty;
-    basis_from_normal(n, &tx, &ty);
-    float3 ol = (float3)(dot(o, tx), dot(o, ty), dot(o, n));
-    float3 h = ggx_sample_vndf(ol, alpha, sample_2d(i, sample, seed));
-    float3 ll = 2.0f * dot(ol, h) * h - ol;
-    if (ll.z <= 0.0f) return;  // below the surface: zero BRDF weight, nothing to trace
-    pdf = ggx_vndf_pdf_from_half(ol, h, alpha);
-    dir = normalize(ll.x * tx + ll.y * ty + ll.z * n);
-  }
+  float pdf;
+  float3 dir = sample_reflection(o, n, mirror, alpha, sample_2d(i, sample, seed), &pdf);
+  if (!(dot(dir, dir) > 0.0f)) return;
   ray_hit[record] = (float4)(dir, -1.0f);
   ray_radiance[record] = (float4)(0.0f, 0.0f, 0.0f, pdf);
 
@@ -307,7 +299,9 @@ __kernel void trace_rays(int2 size, float16 proj, float16 inv_proj, float near_p
   float4 nq = normals[q];
   if (has_base && nq.w < glossy_hit_roughness) {
     float alpha_q = fmax(roughness_to_alpha(nq.w, roughness_mapping), 1e-4f);
-    float3 dir2 = reflect_dir(dir, nq.xyz, nq.w <= mirror_roughness, alpha_q, sample_2d(q, sample, seed + 1u));
+    float pdf2;
+    float3 dir2 = sample_reflection(-dir, nq.xyz, nq.w <= mirror_roughness, alpha_q, sample_2d(q, sample, seed + 1u),
+                                    &pdf2);
     ScreenRay ray2;
     int2 cell2;
     float t2 = dot(dir2, dir2) > 0.0f

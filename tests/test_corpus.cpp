@@ -35,9 +35,7 @@ const Scored& scored(const std::string& scene) {
   s.ref = ssrcl::test::loadCyclesReference(kCorpus + scene + ".exr");
   ssrcl::Device device = ssrcl::test::testDevice();
   ssrcl::Pipeline p(device);
-  p.setGBuffer(s.ref.gbuffer);
-  p.setImage("base", s.ref.base);  // as `ssrcl trace` reads the render's glossy passes
-  p.setImage("specular", s.ref.specular);
+  p.setGBuffer(s.ref.gbuffer);  // with base and specular from the glossy passes, as `ssrcl trace`
   p.setCamera(s.ref.camera);
   auto run = [&](const std::string& name, const ssrcl::TraceSettings& settings) {
     p.settings() = settings;

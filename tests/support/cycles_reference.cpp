@@ -103,16 +103,6 @@ CyclesReference loadCyclesReference(const std::string& exr, const std::string& c
   for (const char* pass : {"GlossDir.", "GlossInd."})
     for (const char* c : {"R", "G", "B"}) gloss.push_back(&channel(std::string(pass) + c));
 
-  ref.base = Image(w, h, 3);
-  ref.specular = Image(w, h, 3);
-  for (int c = 0; c < 3; ++c) {
-    const std::vector<float>& col = channel(std::string("GlossCol.") + "RGB"[c]);
-    for (int i = 0; i < w * h; ++i) {
-      ref.specular.data[3 * i + c] = col[i];
-      ref.base.data[3 * i + c] = g.color.data[3 * i + c] - col[i] * ((*gloss[c])[i] + (*gloss[3 + c])[i]);
-    }
-  }
-
   static AlbedoTable albedo;  // shared by every render a program loads
   std::map<float, std::vector<size_t>> byRoughness;
   std::vector<double> values;

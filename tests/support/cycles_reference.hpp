@@ -17,10 +17,7 @@
 namespace ssrcl::test {
 
 struct CyclesReference {
-  GBuffer gbuffer;
-  // Combined minus Glossy Color x (Glossy Direct + Indirect), and Glossy Color: what
-  // GBuffer::base and GBuffer::specular take from a Cycles render (left empty in `gbuffer`).
-  Image base, specular;
+  GBuffer gbuffer;  // as `ssrcl trace` reads it: base and specular from the glossy passes
   Camera camera;
   std::vector<int> pixels;     // the reflector's pixel indices (see loadCyclesReference)
   std::vector<double> scale;   // per pixel: specular * E, what turns our rgb into Cycles'
