@@ -1,12 +1,12 @@
-# Writes every kernels/*.cl file into one C++ source as a name -> text table.
-file(GLOB files ${KERNEL_DIR}/*.cl)
+# Writes every kernels/*.cl and *.h file into one C++ source as a name -> text table.
+file(GLOB files ${KERNEL_DIR}/*.cl ${KERNEL_DIR}/*.h)
 list(SORT files)
-set(body "// Generated from kernels/*.cl by cmake/embed_kernels.cmake; do not edit.\n#include \"embedded_kernels.hpp\"\nnamespace ssrcl::detail {\nconst std::vector<EmbeddedKernel>& embeddedKernels() {\n  static const std::vector<EmbeddedKernel> table = {\n")
+set(body "// Generated from kernels/*.cl by cmake/embed_kernels.cmake; do not edit.\n#include \"embedded_kernels.hpp\"\n#include <stdexcept>\nnamespace ssrcl::detail {\nconst std::vector<EmbeddedKernel>& embeddedKernels() {\n  static const std::vector<EmbeddedKernel> table = {\n")
 foreach(f ${files})
   get_filename_component(name ${f} NAME)
   file(READ ${f} text)
   string(APPEND body "    {\"${name}\", R\"SSRCLCL(${text})SSRCLCL\"},\n")
 endforeach()
-string(APPEND body "  };\n  return table;\n}\n}  // namespace ssrcl::detail\n")
+string(APPEND body "  };\n  return table;\n}\nconst char* embeddedKernel(const std::string& name) {\n  for (const auto& k : embeddedKernels())\n    if (name == k.name) return k.source;\n  throw std::logic_error(\"kernels/\" + name + \" is not embedded\");\n}\n}  // namespace ssrcl::detail\n")
 file(WRITE ${OUT}.tmp "${body}")
 file(COPY_FILE ${OUT}.tmp ${OUT} ONLY_IF_DIFFERENT)

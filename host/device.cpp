@@ -159,30 +159,32 @@ std::shared_ptr<Device::Impl> open(Found found) {
 
 }  // namespace
 
-const cl::Program& Device::Impl::program() {
+const cl::Program& Device::Impl::program(const std::vector<std::string>& sources,
+                                         const std::vector<std::string>& defines) {
+  // SSRCL_KERNEL_BUILD_OPTIONS adds OpenCL compiler options, for diagnosing a driver (e.g.
+  // -cl-opt-disable); they come last, so they can override the variant's defines.
+  std::string options = "-cl-std=CL1.2";
+  for (const std::string& d : defines) options += " -D" + d;
+  if (const char* extra = std::getenv("SSRCL_KERNEL_BUILD_OPTIONS")) options += std::string(" ") + extra;
+  std::string key = options;
+  for (const std::string& s : sources) key += " " + s;
+
   std::lock_guard<std::mutex> lock(mutex_);
-  if (built_) return program_;
-  // common.cl holds the shared definitions every other file relies on, so it goes first.
+  if (auto it = programs_.find(key); it != programs_.end()) return it->second;
   std::string source;
-  for (const auto& k : detail::embeddedKernels())
-    if (std::string(k.name) == "common.cl") source += k.source;
-  for (const auto& k : detail::embeddedKernels())
-    if (std::string(k.name) != "common.cl") source += std::string("\n#line 1 \"") + k.name + "\"\n" + k.source;
+  for (const std::string& name : sources) source += std::string("#line 1 \"") + name + "\"\n" + detail::embeddedKernel(name) + "\n";
+  cl::Program program;
   try {
-    program_ = cl::Program(context, source);
+    program = cl::Program(context, source);
   } catch (const cl::Error& e) {
     detail::rethrowClError(e, "creating the ssrcl OpenCL program");
   }
-  // SSRCL_KERNEL_BUILD_OPTIONS adds OpenCL compiler options, for diagnosing a driver (e.g.
-  // -cl-opt-disable) and for the tests of this error path (-DSSRCL_TEST_BREAK_BUILD).
-  std::string options = "-cl-std=CL1.2";
-  if (const char* extra = std::getenv("SSRCL_KERNEL_BUILD_OPTIONS")) options += std::string(" ") + extra;
   try {
-    program_.build({device}, options.c_str());
+    program.build({device}, options.c_str());
   } catch (const cl::Error& e) {
     std::string log;
     try {
-      log = program_.getBuildInfo<CL_PROGRAM_BUILD_LOG>(device);
+      log = program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(device);
     } catch (const cl::Error&) {
       log = "(the driver gave no build log)";
     }
@@ -192,8 +194,7 @@ const cl::Program& Device::Impl::program() {
                     " (options: " + options + ")",
                 log);
   }
-  built_ = true;
-  return program_;
+  return programs_.emplace(key, std::move(program)).first->second;
 }
 
 std::vector<DeviceInfo> Device::list() {

@@ -1,6 +1,8 @@
 #pragma once
 #include <map>
 #include <mutex>
+#include <string>
+#include <vector>
 
 #include "opencl.hpp"
 #include "ssrcl/device.hpp"
@@ -13,16 +15,20 @@ struct Device::Impl {
   cl::Context context;
   cl::CommandQueue queue;  // in-order, with profiling for per-stage times
 
-  // The ssrcl program built for this device, compiled on first use and shared by pipelines.
-  const cl::Program& program();
+  // A program of kernels/ sources (in the order given) built with `defines` (e.g. "SSRCL_TRACER=1"),
+  // compiled on first use and shared by pipelines: one per (sources, defines).
+  const cl::Program& program(const std::vector<std::string>& sources, const std::vector<std::string>& defines = {});
 
  private:
   std::mutex mutex_;
-  cl::Program program_;
-  bool built_ = false;
+  std::map<std::string, cl::Program> programs_;
 };
 
 namespace detail {
+
+struct DeviceAccess {
+  static Device::Impl& impl(const Device& device) { return *device.impl_; }
+};
 
 // Throws Error(OutOfMemory), naming `what` (e.g. "a 8192x8192 frame") and the sizes, when a
 // buffer of `largestBuffer` bytes exceeds the device's CL_DEVICE_MAX_MEM_ALLOC_SIZE or all

@@ -6,6 +6,10 @@ const char* errorCodeName(ErrorCode code) noexcept {
   switch (code) {
     case ErrorCode::InvalidArgument:
       return "invalid argument";
+    case ErrorCode::InvalidOperation:
+      return "invalid operation";
+    case ErrorCode::Cancelled:
+      return "cancelled";
     case ErrorCode::InvalidInput:
       return "invalid input";
     case ErrorCode::IoError:

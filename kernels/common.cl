@@ -1,16 +1,10 @@
-// Shared definitions for every ssrcl kernel. The host concatenates this file before the others.
+// Shared definitions for every ssrcl kernel: each program lists this file after ssrcl_shared.h.
 //
 // Conventions: pixel (x, y) covers [x, x+1) x [y, y+1), y = 0 is the top row. Matrices are
 // float16 in row-major order (s0123 = first row) and act on column vectors. Depth is planar
 // view depth (positive in front of the camera); SSRCL_NO_SURFACE marks sky and invalid pixels.
 
 #define SSRCL_NO_SURFACE FLT_MAX
-
-// Test hook for the kernel-build error path: building with -DSSRCL_TEST_BREAK_BUILD (through
-// SSRCL_KERNEL_BUILD_OPTIONS) must fail with this text in the build log.
-#ifdef SSRCL_TEST_BREAK_BUILD
-#error "SSRCL_TEST_BREAK_BUILD is defined: this build fails on purpose"
-#endif
 
 // Radiance rule: NaN becomes 0, negatives 0, and values clamp at 1e20 so that weighted sums
 // in later stages cannot overflow float.
@@ -23,14 +17,6 @@ inline float sanitize_radiance(float v) {
 inline float3 sanitize_radiance3(float3 v) {
   return (float3)(sanitize_radiance(v.x), sanitize_radiance(v.y), sanitize_radiance(v.z));
 }
-
-// One HZB level: offset into the packed mip buffer and its size.
-typedef struct {
-  int offset;
-  int width;
-  int height;
-  int pad;
-} HzbLevel;
 
 inline float4 mat_mul(float16 m, float4 v) {
   return (float4)(dot(m.s0123, v), dot(m.s4567, v), dot(m.s89ab, v), dot(m.scdef, v));
@@ -102,9 +88,9 @@ inline float plane_depth_at(float16 inv_proj, int2 size, float2 pixel, float3 p,
   return depth > 0.0f && isfinite(depth) ? depth : -1.0f;
 }
 
-// Work is classified in 8x8 tiles (the 2D work-group size): kernels that run per tile take a
-// list of tile indices and a 1D range of work-groups, group g covering tile tile_list[g].
-#define SSRCL_TILE 8
+// Work is classified in tiles of SSRCL_TILE^2 pixels (the 2D work-group size): kernels that run
+// per tile take a list of tile indices and a 1D range of work-groups, group g covering tile
+// tile_list[g].
 
 inline int2 tile_pixel(__global const int* tile_list, int tiles_x) {
   int tile = tile_list[get_group_id(0)];

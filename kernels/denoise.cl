@@ -2,11 +2,12 @@
 // with roughness (rougher lobes vary slowly), stopped at depth and normal edges so reflections
 // do not bleed across objects. Mirror-like and untraced pixels pass through unchanged. Runs over
 // the listed tiles: pixels that reflect lie in them, and it reads no others.
-__kernel void denoise(int2 size, __global const int* tile_list, int tiles_x, float mirror_roughness,
-                      __global const float4* positions, __global const float4* normals, __global const int* pixel_rays,
+__kernel void denoise(FilterParams params, __global const int* tile_list, __global const float4* positions, __global const float4* normals, __global const int* pixel_rays,
                       __global const float4* in_rgba, __global const float* in_distance,
                       __global float4* out_rgba, __global float* out_distance) {
-  int2 xy = tile_pixel(tile_list, tiles_x);
+  const int2 size = (int2)(params.width, params.height);
+  const float mirror_roughness = params.mirror_roughness;
+  int2 xy = tile_pixel(tile_list, params.tiles_x);
   int x = xy.x, y = xy.y;
   if (x >= size.x || y >= size.y) return;
   int i = y * size.x + x;

@@ -69,7 +69,7 @@ inline void basis_from_normal(float3 n, float3* t, float3* b) {
   *b = (float3)(c, sign + n.y * n.y * a, -n.y);
 }
 
-// Roughness to alpha: Cycles and most renderers square it (mapping 0); mapping 1 is linear.
+// Roughness to alpha: Cycles and most renderers square it (SSRCL_ROUGHNESS_SQUARED), or linear.
 inline float roughness_to_alpha(float roughness, int mapping) {
-  return mapping == 1 ? roughness : roughness * roughness;
+  return mapping == SSRCL_ROUGHNESS_LINEAR ? roughness : roughness * roughness;
 }

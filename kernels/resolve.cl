@@ -23,14 +23,17 @@ inline bool similar_surface(float depth_p, float3 n_p, float depth_q, float3 n_q
   return fabs(depth_q - depth_p) <= 0.05f * depth_p && dot(n_p, n_q) >= 0.9f;
 }
 
-__kernel void resolve_accumulate(int2 size, __global const int* tile_list, int tiles_x, float16 inv_proj,
+__kernel void resolve_accumulate(ResolveParams params, __global const int* tile_list,
                                  __global const float4* positions,
                                  __global const float4* normals, __global const int* pixel_rays,
-                                 int batch_size, int first_sample, float mirror_roughness,
-                                 int roughness_mapping, int reuse_radius, __global const float4* ray_hit,
+                                 __global const float4* ray_hit,
                                  __global const float4* ray_radiance, __global float4* acc_radiance,
                                  __global float2* acc_weight) {
-  int2 xy = tile_pixel(tile_list, tiles_x);
+  const int2 size = (int2)(params.width, params.height);
+  const float16 inv_proj = vload16(0, params.inv_proj);
+  const int batch_size = params.batch_size, first_sample = params.first_sample, reuse_radius = params.reuse_radius;
+  const float mirror_roughness = params.mirror_roughness;
+  int2 xy = tile_pixel(tile_list, params.tiles_x);
   int x = xy.x, y = xy.y;
   if (x >= size.x || y >= size.y) return;
   int i = y * size.x + x;
@@ -58,7 +61,7 @@ __kernel void resolve_accumulate(int2 size, __global const int* tile_list, int t
     float3 tx, ty;
     basis_from_normal(nr.xyz, &tx, &ty);
     float3 ol = (float3)(dot(-v, tx), dot(-v, ty), dot(-v, nr.xyz));
-    float alpha = fmax(roughness_to_alpha(nr.w, roughness_mapping), 1e-4f);
+    float alpha = fmax(roughness_to_alpha(nr.w, SSRCL_ROUGHNESS_MAPPING), 1e-4f);
     for (int dy = -reuse_radius; dy <= reuse_radius; ++dy) {
       for (int dx = -reuse_radius; dx <= reuse_radius; ++dx) {
         int qx = x + dx, qy = y + dy;
@@ -90,10 +93,11 @@ __kernel void resolve_accumulate(int2 size, __global const int* tile_list, int t
   acc_weight[i] = weight;
 }
 
-__kernel void resolve_finalize(int2 size, __global const int* tile_list, int tiles_x,
+__kernel void resolve_finalize(ResolveParams params, __global const int* tile_list,
                                __global const float4* acc_radiance, __global const float2* acc_weight,
                                __global float4* out_rgba, __global float* out_distance) {
-  int2 xy = tile_pixel(tile_list, tiles_x);
+  const int2 size = (int2)(params.width, params.height);
+  int2 xy = tile_pixel(tile_list, params.tiles_x);
   int x = xy.x, y = xy.y;
   if (x >= size.x || y >= size.y) return;
   int i = y * size.x + x;

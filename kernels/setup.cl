@@ -22,21 +22,22 @@ inline int glossy_rays(float roughness, int samples_per_pixel, float full_rays_r
   return clamp((int)ceil((float)samples_per_pixel * roughness / full_rays_roughness), 1, samples_per_pixel);
 }
 
-// Runs in 8x8 work-groups; listed pixels are counted in local memory first so the global counters
-// (ray_count[0] listed pixels, [1] rays, [2] listed tiles, [3] pixels with rays) see one atomic
-// per group instead of one per pixel.
-__kernel void setup(int2 size, float near_plane, float far_plane, float16 normal_matrix, float16 inv_proj,
-                    __global const float* color_in, int color_channels,
+// Runs in SSRCL_TILE^2 work-groups; listed pixels are counted in local memory first so the global
+// counters (ray_count[SSRCL_COUNT_*]) see one atomic per group instead of one per pixel.
+__kernel void setup(SetupParams params, __global const float* color_in,
                     __global const float* depth_in,
                     __global const float* normal_in,
-                    __global const float* roughness_in, float constant_roughness,
-                    float max_roughness, float mirror_roughness, int samples_per_pixel, float full_rays_roughness,
-                    int trace_stride, int classify, float thickness_rel, int adaptive_thickness,
+                    __global const float* roughness_in,
                     __global float4* position_out, __global float* hzb_out, __global float4* normal_out,
                     __global float4* color_out,
                     __global int* pixel_rays, __global int* ray_list, __global int* tile_list,
                     __global int* ray_count, __global float* thickness_out) {
   __local int group_count, group_base, group_rays, group_traced, group_reflecting;
+  const int2 size = (int2)(params.width, params.height);
+  const float16 normal_matrix = vload16(0, params.normal_matrix), inv_proj = vload16(0, params.inv_proj);
+  const float near_plane = params.near_plane, far_plane = params.far_plane;
+  const int color_channels = params.color_channels, classify = params.classify;
+  const float constant_roughness = params.constant_roughness;
   int x = get_global_id(0), y = get_global_id(1);
   bool inside = x < size.x && y < size.y;
   int i = y * size.x + x;
@@ -86,16 +87,18 @@ __kernel void setup(int2 size, float near_plane, float far_plane, float16 normal
     // depth times |n.v| (near a silhouette a surface is thin along its normal however deep it is).
     // The adaptive model's depth follows in kernels/thickness.cl.
     float along_normal = fabs(dot(view_dir, nv));
-    thickness_out[i] = !surface ? 0.0f : adaptive_thickness ? along_normal : thickness_rel * d * along_normal;
+    thickness_out[i] = !surface                    ? 0.0f
+                      : params.adaptive_thickness ? along_normal
+                                                  : params.thickness_rel * d * along_normal;
     // Ray counts: 0 no reflection (sky, too rough), 1 mirror-like, -1 glossy but resolved from
     // its neighbours' rays only (strided tracing), else samples_per_pixel.
     // A normal facing away from the viewer (seen from behind) defines no reflection.
-    bool reflects = surface && normal_ok && r <= max_roughness && dot(view_dir, nv) < 0.0f;
-    bool strided_out = (x % trace_stride) != 0 || (y % trace_stride) != 0;
+    bool reflects = surface && normal_ok && r <= params.max_roughness && dot(view_dir, nv) < 0.0f;
+    bool strided_out = (x % params.trace_stride) != 0 || (y % params.trace_stride) != 0;
     int rays = !reflects                ? 0
-               : r <= mirror_roughness    ? 1
+               : r <= params.mirror_roughness    ? 1
                : strided_out              ? -1
-                                          : glossy_rays(r, samples_per_pixel, full_rays_roughness);
+                                          : glossy_rays(r, params.samples_per_pixel, params.full_rays_roughness);
     pixel_rays[i] = rays;
     traced = rays > 0;
     reflecting = rays != 0;
@@ -118,11 +121,11 @@ __kernel void setup(int2 size, float near_plane, float far_plane, float16 normal
   if (reflecting) atomic_inc(&group_reflecting);
   barrier(CLK_LOCAL_MEM_FENCE);
   if (leader) {
-    group_base = atomic_add(&ray_count[0], group_count);
-    atomic_add(&ray_count[1], group_rays);
-    atomic_add(&ray_count[3], group_traced);
+    group_base = atomic_add(&ray_count[SSRCL_COUNT_LISTED], group_count);
+    atomic_add(&ray_count[SSRCL_COUNT_RAYS], group_rays);
+    atomic_add(&ray_count[SSRCL_COUNT_TRACED], group_traced);
     if (group_reflecting > 0 || !classify)
-      tile_list[atomic_inc(&ray_count[2])] = get_group_id(1) * get_num_groups(0) + get_group_id(0);
+      tile_list[atomic_inc(&ray_count[SSRCL_COUNT_TILES])] = get_group_id(1) * get_num_groups(0) + get_group_id(0);
   }
   barrier(CLK_LOCAL_MEM_FENCE);
   if (listed) ray_list[group_base + slot] = i;

@@ -37,9 +37,11 @@ inline bool joined(__global const float4* positions, int k, int length, int step
 
 // One work-item per row (axis 0) or column (axis 1). Axis 0 writes each pixel's (run length, chord)
 // to `row`; axis 1 compares with its column's and writes the thickness.
-__kernel void surface_thickness(int2 size, int axis, __global const float4* positions,
-                                float scale, float min_rel, float max_rel,
+__kernel void surface_thickness(ThicknessParams params, __global const float4* positions,
                                 __global float2* row, __global float* thickness) {
+  const int2 size = (int2)(params.width, params.height);
+  const int axis = params.axis;
+  const float scale = params.scale, min_rel = params.min_rel, max_rel = params.max_rel;
   int line = get_global_id(0);
   int count = axis == 0 ? size.y : size.x;
   if (line >= count) return;

@@ -186,8 +186,7 @@ inline float trace_dda(TraceScene* sc, const ScreenRay* ray, float3 dir, int2* h
 // Traces from view-space point p along unit direction dir: the segment ends at the near plane for
 // rays toward the camera, at the far plane otherwise, capped so an infinite far plane still gives a
 // finite end. Returns the hit's t on *ray (negative on a miss) and the pixel hit in *cell.
-inline float trace_from(TraceScene* sc, float16 proj, float near_plane, float far_plane, int tracer,
-                        float linear_step, float3 p, float3 dir, ScreenRay* ray, int2* cell) {
+inline float trace_from(TraceScene* sc, float16 proj, float near_plane, float far_plane, float linear_step, float3 p, float3 dir, ScreenRay* ray, int2* cell) {
   float length_max = 1e6f * -p.z;
   float len = dir.z > 0.0f ? (-near_plane * 1.001f - p.z) / dir.z
             : dir.z < 0.0f ? (-far_plane - p.z) / dir.z : length_max;
@@ -195,9 +194,13 @@ inline float trace_from(TraceScene* sc, float16 proj, float near_plane, float fa
   if (!(len > 0.0f)) return -1.0f;
   if (!make_screen_ray(proj, sc->size, p, p + dir * len, ray)) return -1.0f;
   if (!(fmax(fabs(ray->ds.x), fabs(ray->ds.y)) > 0.0f)) return -1.0f;
-  return tracer == 1   ? trace_linear(sc, ray, dir, linear_step, cell)
-         : tracer == 2 ? trace_dda(sc, ray, dir, cell)
-                       : trace_hiz(sc, ray, dir, cell);
+#if SSRCL_TRACER == SSRCL_TRACER_LINEAR
+  return trace_linear(sc, ray, dir, linear_step, cell);
+#elif SSRCL_TRACER == SSRCL_TRACER_DDA
+  return trace_dda(sc, ray, dir, cell);
+#else
+  return trace_hiz(sc, ray, dir, cell);
+#endif
 }
 
 // The direction a surface with normal n and GGX alpha reflects toward o (unit, away from it): the
@@ -216,10 +219,7 @@ inline float3 sample_reflection(float3 o, float3 n, bool mirror, float alpha, fl
   return normalize(ll.x * tx + ll.y * ty + ll.z * n);
 }
 
-// Counting mode: per-ray texel reads summed over 1024 slots (32-bit atomics that cannot
-// overflow on any frame size; the host adds them up in 64 bits), then a histogram of iterations
-// in power-of-two bins (bin b holds [2^(b-1), 2^b), bin 0 holds 0).
-#define SSRCL_FETCH_SLOTS 1024
+// Counting mode (SSRCL_COUNT_WORK): texel reads and the iteration histogram (ssrcl_shared.h).
 inline void count_work(__global int* counters, int gid, const TraceScene* sc) {
   atomic_add(&counters[gid % SSRCL_FETCH_SLOTS], sc->fetches);
   atomic_inc(&counters[SSRCL_FETCH_SLOTS + (32 - clz(sc->iterations))]);
@@ -229,22 +229,23 @@ inline void count_work(__global int* counters, int gid, const TraceScene* sc) {
 //   ray_hit      hit: (view-space hit point, confidence >= 0); miss: (direction, -1)
 //   ray_radiance (rgb at the hit, pdf of the direction); pdf 0 marks a ray that is a delta
 //                (mirror) or was not traced, which neighbours must not reuse.
-__kernel void trace_rays(int2 size, float16 proj, float16 inv_proj, float near_plane, float far_plane,
-                         __global const float* hzb, __global const HzbLevel* levels, int level_count,
+__kernel void trace_rays(TraceParams params, __global const float* hzb, __global const HzbLevel* levels,
                          __global const float4* positions, __global const float4* normals,
-                         __global const int* ray_list, int listed,
-                         __global const int* pixel_rays, int batch_size, int first_sample, uint seed,
-                         float mirror_roughness, int roughness_mapping, float cone_scale, int tracer, float linear_step,
-                         __global const float* thickness, int max_iterations, float edge_fade, int counting,
-                         __global int* work_counters,
-                         __global const float4* color_pyramid, float glossy_hit_roughness, int has_base,
-                         __global const float* base, __global const float* specular, __global float4* ray_hit,
+                         __global const int* ray_list, __global const int* pixel_rays,
+                         __global const float* thickness, __global int* work_counters,
+                         __global const float4* color_pyramid, __global const float* base, __global const float* specular, __global float4* ray_hit,
                          __global float4* ray_radiance) {
+  const int2 size = (int2)(params.width, params.height);
+  const float16 proj = vload16(0, params.proj), inv_proj = vload16(0, params.inv_proj);
+  const float near_plane = params.near_plane, far_plane = params.far_plane, linear_step = params.linear_step;
+  const float mirror_roughness = params.mirror_roughness, edge_fade = params.edge_fade;
+  const int batch_size = params.batch_size, level_count = params.level_count;
+  const uint seed = params.seed;
   int gid = get_global_id(0);
-  if (gid >= listed * batch_size) return;
+  if (gid >= params.listed * batch_size) return;
   int i = ray_list[gid / batch_size];
   int slot = gid % batch_size;
-  int sample = first_sample + slot;
+  int sample = params.first_sample + slot;
   if (sample >= pixel_rays[i]) return;
   size_t record = (size_t)i * batch_size + slot;
   ray_hit[record] = (float4)(0.0f, 0.0f, 0.0f, -1.0f);
@@ -259,30 +260,30 @@ __kernel void trace_rays(int2 size, float16 proj, float16 inv_proj, float near_p
 
   // Mirror-like pixels have one ray, the exact mirror direction.
   bool mirror = nr.w <= mirror_roughness;
-  float alpha = fmax(roughness_to_alpha(nr.w, roughness_mapping), 1e-4f);
+  float alpha = fmax(roughness_to_alpha(nr.w, SSRCL_ROUGHNESS_MAPPING), 1e-4f);
   float pdf;
   float3 dir = sample_reflection(o, n, mirror, alpha, sample_2d(i, sample, seed), &pdf);
   if (!(dot(dir, dir) > 0.0f)) return;
   ray_hit[record] = (float4)(dir, -1.0f);
   ray_radiance[record] = (float4)(0.0f, 0.0f, 0.0f, pdf);
 
-  TraceScene sc = {size, hzb, levels, level_count, positions, normals, thickness, max_iterations, 0, 0};
+  TraceScene sc = {size, hzb, levels, level_count, positions, normals, thickness, params.max_iterations, 0, 0};
   ScreenRay ray;
   int2 cell;  // the pixel whose surface the ray hit; its colour is the hit's colour
-  float t = trace_from(&sc, proj, near_plane, far_plane, tracer, linear_step, p, dir, &ray, &cell);
+  float t = trace_from(&sc, proj, near_plane, far_plane, linear_step, p, dir, &ray, &cell);
   if (t < 0.0f) {
-    if (counting) count_work(work_counters, gid, &sc);
+    if (SSRCL_COUNT_WORK) count_work(work_counters, gid, &sc);
     return;
   }
 
   float2 s = ray_screen(&ray, t);
   float3 hit = ray_point(&ray, t);
   float4 radiance;
-  if (cone_scale > 0.0f && !mirror) {
+  if (params.cone_scale > 0.0f && !mirror) {
     // Prefiltered lookup: the mip whose texels match the footprint of this ray's share of the
     // lobe (a cone of tangent alpha * cone_scale) at the hit distance.
     float px_per_unit = 0.5f * (float)size.y * fabs(proj.s5) * ray_q(&ray, t).w;
-    float footprint = 2.0f * length(hit - p) * alpha * cone_scale * px_per_unit;
+    float footprint = 2.0f * length(hit - p) * alpha * params.cone_scale * px_per_unit;
     radiance = pyramid_sample(color_pyramid, levels, level_count, s, log2(fmax(footprint, 1.0f)));
   } else {
     cell = clamp(cell, (int2)(0, 0), size - 1);
@@ -297,15 +298,15 @@ __kernel void trace_rays(int2 size, float16 proj, float16 inv_proj, float near_p
   cell = clamp(cell, (int2)(0, 0), size - 1);
   int q = cell.y * size.x + cell.x;
   float4 nq = normals[q];
-  if (has_base && nq.w < glossy_hit_roughness) {
-    float alpha_q = fmax(roughness_to_alpha(nq.w, roughness_mapping), 1e-4f);
+  if (params.has_base && nq.w < params.glossy_hit_roughness) {
+    float alpha_q = fmax(roughness_to_alpha(nq.w, SSRCL_ROUGHNESS_MAPPING), 1e-4f);
     float pdf2;
     float3 dir2 = sample_reflection(-dir, nq.xyz, nq.w <= mirror_roughness, alpha_q, sample_2d(q, sample, seed + 1u),
                                     &pdf2);
     ScreenRay ray2;
     int2 cell2;
     float t2 = dot(dir2, dir2) > 0.0f
-                   ? trace_from(&sc, proj, near_plane, far_plane, tracer, linear_step, hit, dir2, &ray2, &cell2)
+                   ? trace_from(&sc, proj, near_plane, far_plane, linear_step, hit, dir2, &ray2, &cell2)
                    : -1.0f;
     if (t2 >= 0.0f) {
       cell2 = clamp(cell2, (int2)(0, 0), size - 1);
@@ -314,7 +315,7 @@ __kernel void trace_rays(int2 size, float16 proj, float16 inv_proj, float near_p
       radiance.xyz = sanitize_radiance3(mix(radiance.xyz, bounced, c2));
     }
   }
-  if (counting) count_work(work_counters, gid, &sc);
+  if (SSRCL_COUNT_WORK) count_work(work_counters, gid, &sc);
   ray_hit[record] = (float4)(hit, edge_confidence(s, size, edge_fade));
   ray_radiance[record] = (float4)(radiance.xyz, pdf);
 }

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "ssrcl/error.hpp"
+#include "ssrcl/version.hpp"
 
 namespace ssrcl::cli {
 namespace {

@@ -21,6 +21,9 @@ inline int exitCodeFor(ErrorCode code) {
     case ErrorCode::OpenCL:
     case ErrorCode::OutOfMemory:
       return kExitDevice;
+    case ErrorCode::InvalidOperation:  // the library used out of order: a bug here
+    case ErrorCode::Cancelled:         // nothing here cancels
+      return kExitInternal;
   }
   return kExitInternal;
 }

@@ -3,6 +3,7 @@
 
 #include "commands.hpp"
 #include "exit_codes.hpp"
+#include "ssrcl/version.hpp"
 #include "ssrcl/error.hpp"
 
 int main(int argc, char** argv) {

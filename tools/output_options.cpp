@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include "settings_json.hpp"
+#include "ssrcl/version.hpp"
 
 namespace ssrcl::cli {
 

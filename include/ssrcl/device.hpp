@@ -4,6 +4,9 @@
 #include <vector>
 
 namespace ssrcl {
+namespace detail {
+struct DeviceAccess;
+}
 
 enum class DeviceType { Default, CPU, GPU };
 
@@ -32,9 +35,9 @@ class Device {
   const DeviceInfo& info() const;
 
   struct Impl;
-  Impl& impl() const { return *impl_; }
 
  private:
+  friend struct detail::DeviceAccess;  // the library's stages reach the OpenCL objects
   std::shared_ptr<Impl> impl_;
 };
 

@@ -19,4 +19,22 @@ struct Image {
   bool empty() const { return data.empty(); }
 };
 
+enum class PixelFormat { Float, Half };  // 32-bit or 16-bit (IEEE binary16) floats per channel
+
+// A caller-owned image of any layout: pixel (x, y), channel c at
+// data + y * rowStride + x * pixelStride + c * (2 or 4 bytes). Strides are in bytes; 0 means
+// packed (pixelStride = channels * channel size, rowStride = width * pixelStride).
+struct ImageView {
+  void* data = nullptr;
+  PixelFormat format = PixelFormat::Float;
+  int width = 0, height = 0, channels = 0;
+  std::size_t pixelStride = 0, rowStride = 0;
+
+  ImageView() = default;
+  ImageView(void* d, PixelFormat f, int w, int h, int c, std::size_t pixel = 0, std::size_t row = 0)
+      : data(d), format(f), width(w), height(h), channels(c), pixelStride(pixel), rowStride(row) {}
+  ImageView(const float* d, int w, int h, int c)  // packed floats (read-only use)
+      : ImageView(const_cast<float*>(d), PixelFormat::Float, w, h, c) {}
+};
+
 }  // namespace ssrcl

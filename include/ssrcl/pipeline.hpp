@@ -1,5 +1,6 @@
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -53,7 +54,9 @@ struct TraceSettings {
   float thicknessScale = 0.75f;
   float thicknessMinRelative = 0.002f;
   float thicknessMaxRelative = 0.08f;
-  int maxIterations = 512;          // Hi-Z traversal steps per ray before it gives up
+  // Traversal steps per ray before it gives up; 0: the tracer's own, 512 for Hi-Z and unlimited
+  // (2^20) for DDA and linear, which visit every pixel on the way.
+  int maxIterations = 0;
   float maxRoughness = 1.0f;        // pixels rougher than this get no ray and A = 0
   float edgeFade = 0.05f;           // fraction of the screen's smaller side over which A fades out
   float constantRoughness = -1.0f;  // >= 0 overrides the roughness image
@@ -89,6 +92,11 @@ struct TraceSettings {
   // pixel and tile (the others exit at once), the same output: the baseline for benchmarks.
   bool classifyWork = true;
 };
+// Throws Error(InvalidArgument) naming the first parameter out of its range (commit() does too).
+void validateSettings(const TraceSettings& settings);
+// Field by field (a new field joins them in host/settings_validation.cpp).
+bool operator==(const TraceSettings& a, const TraceSettings& b);
+bool operator!=(const TraceSettings& a, const TraceSettings& b);
 
 // Named bundles of the settings above (all with the adaptive thickness and prefiltered hits):
 //   "draft"     Hi-Z, 2 rays in one pixel of each 2x2 block, 5x5 reuse, 64 iterations.
@@ -126,6 +134,10 @@ struct StageTimes {
 // when settings().constantRoughness >= 0). Optional, together: base 3 (each pixel's radiance
 // without its specular reflection, e.g. Combined minus Glossy) and specular 3 (its specular
 // colour), for hits on glossy surfaces (TraceSettings::glossyHitRoughness).
+//
+// commit() tracks what changed: images of the same size and settings that need the same buffers
+// reuse everything the last commit allocated, so committing each frame of a sequence is cheap.
+// Settings changed after commit() are validated again (and buffers replanned) by execute().
 class Pipeline {
  public:
   explicit Pipeline(const Device& device);
@@ -133,23 +145,31 @@ class Pipeline {
   Pipeline(Pipeline&&) noexcept;
   Pipeline& operator=(Pipeline&&) noexcept;
 
-  // The image is copied at commit/execute time; it must stay alive until then.
+  // The image is copied at execute time; it must stay alive until then.
   void setImage(const std::string& name, const Image& image);
+  // The same from caller-owned memory of any layout (float or half, strides), read at execute.
+  void setImage(const std::string& name, const ImageView& view);
+  // Caller-owned memory that execute() writes the output ("reflection": 4 channels, "distance": 1)
+  // into, in its layout; output(name) keeps working as well.
+  void setOutput(const std::string& name, const ImageView& view);
   // All four passes of a loaded G-buffer (roughness only when it has one), same lifetime rule.
   void setGBuffer(const GBuffer& gbuffer);
   void setCamera(const Camera& camera);
   TraceSettings& settings();
 
+  // Called during execute() with the fraction done (0..1); returning false cancels it: execute()
+  // then throws Error(Cancelled) and the outputs keep their previous content.
+  using ProgressMonitor = std::function<bool(double fraction)>;
+  void setProgressMonitor(ProgressMonitor monitor);
+
   void commit();
+  // Throws Error(InvalidOperation) before commit() or after an input or camera changed since.
   void execute();
 
   const Image& output(const std::string& name) const;
   const StageTimes& stageTimes() const;
   // Device memory the committed pipeline holds, in bytes (inputs, pyramids, ray records, outputs).
   size_t deviceBytes() const;
-  // The HZB mip chain of the last execute, for tests and tools: level 0 is the nearest depth of
-  // each pixel's surface over its square, each coarser level the min of the texels under it.
-  std::vector<Image> readHzb() const;
 
  private:
   struct Impl;

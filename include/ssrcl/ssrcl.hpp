@@ -7,3 +7,4 @@
 #include "ssrcl/image.hpp"
 #include "ssrcl/io.hpp"
 #include "ssrcl/pipeline.hpp"
+#include "ssrcl/version.hpp"

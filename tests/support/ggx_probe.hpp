@@ -1,5 +1,6 @@
 #pragma once
-// Runs the GGX sampler exactly as the kernels implement it, through the test_hooks.cl kernel.
+// Runs the GGX sampler exactly as the kernels implement it: the library's kernels/ggx.cl and
+// kernels/sequence.cl with a probe kernel of the tests' own.
 #include <cstdint>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>

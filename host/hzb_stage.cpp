@@ -1,0 +1,32 @@
+#include "hzb_stage.hpp"
+
+namespace ssrcl::detail {
+
+void HzbStage::configure(Device::Impl& device) {
+  kernel_ = cl::Kernel(device.program({"ssrcl_shared.h", "common.cl", "hzb.cl"}), "hzb_reduce");
+}
+
+void HzbStage::plan(DeviceBuffers& buffers, const FrameShape& frame) {
+  frame_ = frame;
+  buffers.add(hzb, frame.pyramidTexels() * sizeof(float));
+  buffers.add(levels, frame.levels.size() * sizeof(HzbLevel), CL_MEM_READ_ONLY);
+}
+
+void HzbStage::bind(cl::CommandQueue& q) {
+  q.enqueueWriteBuffer(levels, CL_TRUE, 0, frame_.levels.size() * sizeof(HzbLevel), frame_.levels.data());
+  bindArgs(kernel_, 0, hzb, levels);
+}
+
+void HzbStage::enqueue(cl::CommandQueue& q, StageEvents& events) { reducePyramid(q, kernel_, frame_, events, "hzb"); }
+
+void reducePyramid(cl::CommandQueue& q, cl::Kernel& kernel, const FrameShape& frame, StageEvents& events,
+                   const std::string& stage) {
+  for (size_t l = 1; l < frame.levels.size(); ++l) {
+    const cl::NDRange range(roundUp(frame.levels[l].width, SSRCL_TILE), roundUp(frame.levels[l].height, SSRCL_TILE));
+    kernel.setArg(2, static_cast<cl_int>(l));
+    q.enqueueNDRangeKernel(kernel, cl::NullRange, range, cl::NDRange(SSRCL_TILE, SSRCL_TILE), nullptr,
+                           newEvent(events, stage));
+  }
+}
+
+}  // namespace ssrcl::detail

@@ -1,0 +1,74 @@
+#include "pipeline_inputs.hpp"
+
+#include <algorithm>
+#include <array>
+
+#include "image_views.hpp"
+#include "ssrcl/error.hpp"
+
+namespace ssrcl::detail {
+namespace {
+
+struct InputKind {
+  const char* name;
+  int channels;  // colour takes 3 or 4
+};
+constexpr std::array<InputKind, 6> kInputs = {{{"color", 3}, {"depth", 1}, {"normal", 3}, {"roughness", 1},
+                                               {"base", 3}, {"specular", 3}}};
+
+void checkName(const std::string& name) {
+  if (std::none_of(kInputs.begin(), kInputs.end(), [&](const InputKind& k) { return name == k.name; }))
+    throw Error(ErrorCode::InvalidArgument,
+                "unknown input image '" + name + "' (expected color, depth, normal, roughness, base or specular)");
+}
+
+}  // namespace
+
+void PipelineInputs::set(const std::string& name, const Image& image) {
+  checkName(name);
+  sources_[name] = {&image, {}};
+}
+
+void PipelineInputs::set(const std::string& name, const ImageView& view) {
+  checkName(name);
+  sources_[name] = {nullptr, view};
+}
+
+ImageView PipelineInputs::view(const std::string& name) const {
+  const Source& s = sources_.at(name);
+  return s.image ? viewOf(*s.image) : s.view;
+}
+
+bool PipelineInputs::has(const std::string& name) const {
+  auto it = sources_.find(name);
+  return it != sources_.end() && !emptyView(view(name));
+}
+
+const float* PipelineInputs::pixels(const std::string& name) { return packedFloats(view(name), staging_[name]); }
+
+void PipelineInputs::validate(const Camera& camera, const TraceSettings& s) const {
+  if (has("base") != has("specular"))
+    throw Error(ErrorCode::InvalidArgument, "pipeline: input images 'base' and 'specular' go together");
+  for (const InputKind& kind : kInputs) {
+    const std::string name = kind.name;
+    if (!has(name)) {
+      if ((name == "roughness" && s.constantRoughness >= 0.0f) || name == "base" || name == "specular") continue;
+      throw Error(ErrorCode::InvalidArgument, "pipeline: input image '" + name + "' not set");
+    }
+    const ImageView v = view(name);
+    const bool channelsOk = name == "color" ? (v.channels == 3 || v.channels == 4) : v.channels == kind.channels;
+    if (!channelsOk)
+      throw Error(ErrorCode::InvalidArgument,
+                  "pipeline: input image '" + name + "' has " + std::to_string(v.channels) + " channels");
+    if (v.width != camera.width || v.height != camera.height)
+      throw Error(ErrorCode::InvalidInput, "pipeline: input image '" + name + "' is " + std::to_string(v.width) + "x" +
+                                               std::to_string(v.height) + " but the camera is " +
+                                               std::to_string(camera.width) + "x" + std::to_string(camera.height));
+    const Source& source = sources_.at(name);
+    if (source.image && source.image->data.size() != size_t(v.width) * v.height * v.channels)
+      throw Error(ErrorCode::InvalidArgument,
+                  "pipeline: input image '" + name + "' data size does not match its shape");
+  }
+}
+
+}  // namespace ssrcl::detail

@@ -1,0 +1,34 @@
+#pragma once
+// The pipeline's named input images: the caller's Image objects or views, read at execute.
+#include <map>
+#include <string>
+#include <vector>
+
+#include "ssrcl/camera.hpp"
+#include "ssrcl/image.hpp"
+#include "ssrcl/pipeline.hpp"
+
+namespace ssrcl::detail {
+
+class PipelineInputs {
+ public:
+  // Throw Error(InvalidArgument) for a name that is not an input.
+  void set(const std::string& name, const Image& image);
+  void set(const std::string& name, const ImageView& view);
+  bool has(const std::string& name) const;
+  ImageView view(const std::string& name) const;  // as the image is now
+  // Packed floats of a set input (converted into a buffer kept for the next frame when needed).
+  const float* pixels(const std::string& name);
+  // Throws Error naming the image and what is wrong: a missing one, channels, size.
+  void validate(const Camera& camera, const TraceSettings& s) const;
+
+ private:
+  struct Source {
+    const Image* image = nullptr;  // followed to its current content, or
+    ImageView view;
+  };
+  std::map<std::string, Source> sources_;
+  std::map<std::string, std::vector<float>> staging_;
+};
+
+}  // namespace ssrcl::detail

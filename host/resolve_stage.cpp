@@ -1,0 +1,50 @@
+#include "resolve_stage.hpp"
+
+namespace ssrcl::detail {
+
+cl::NDRange listedTiles(int tiles) { return cl::NDRange(size_t(tiles) * SSRCL_TILE, SSRCL_TILE); }
+
+void ResolveStage::configure(Device::Impl& device, const TraceSettings& s) {
+  const cl::Program& program =
+      device.program({"ssrcl_shared.h", "common.cl", "ggx.cl", "resolve.cl"}, {roughnessMappingDefine(s.roughnessMapping)});
+  accumulate_ = cl::Kernel(program, "resolve_accumulate");
+  finalize_ = cl::Kernel(program, "resolve_finalize");
+}
+
+void ResolveStage::plan(DeviceBuffers& buffers, const FrameShape& frame) {
+  frame_ = frame;
+  buffers.add(radiance_, frame.pixels() * sizeof(cl_float4));
+  buffers.add(weight_, frame.pixels() * sizeof(cl_float2));
+}
+
+void ResolveStage::bind(const SetupStage& setup, const TraceStage& trace, const cl::Buffer& rgba,
+                        const cl::Buffer& distance) {
+  bindArgs(accumulate_, 1, setup.tileList, setup.positions, setup.normals, setup.pixelRays, trace.rayHit,
+           trace.rayRadiance, radiance_, weight_);
+  bindArgs(finalize_, 1, setup.tileList, radiance_, weight_, rgba, distance);
+}
+
+ResolveParams ResolveStage::params(const FrameShape& frame, const CameraConstants& camera, const TraceSettings& s) {
+  ResolveParams p{};
+  std::copy(std::begin(camera.invProj), std::end(camera.invProj), p.inv_proj);
+  p.width = frame.width;
+  p.height = frame.height;
+  p.tiles_x = frame.tilesX;
+  p.mirror_roughness = s.mirrorRoughness;
+  p.reuse_radius = s.reuseRadius;
+  return p;  // batch_size and first_sample are per batch
+}
+
+void ResolveStage::accumulate(cl::CommandQueue& q, const ResolveParams& params, int tiles, StageEvents& events) {
+  accumulate_.setArg(0, params);
+  q.enqueueNDRangeKernel(accumulate_, cl::NullRange, listedTiles(tiles), cl::NDRange(SSRCL_TILE, SSRCL_TILE), nullptr,
+                         newEvent(events, "resolve"));
+}
+
+void ResolveStage::finalize(cl::CommandQueue& q, const ResolveParams& params, int tiles, StageEvents& events) {
+  finalize_.setArg(0, params);
+  q.enqueueNDRangeKernel(finalize_, cl::NullRange, listedTiles(tiles), cl::NDRange(SSRCL_TILE, SSRCL_TILE), nullptr,
+                         newEvent(events, "resolve"));
+}
+
+}  // namespace ssrcl::detail

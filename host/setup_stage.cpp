@@ -1,0 +1,78 @@
+#include "setup_stage.hpp"
+
+namespace ssrcl::detail {
+
+void SetupStage::configure(Device::Impl& device) {
+  kernel_ = cl::Kernel(device.program({"ssrcl_shared.h", "common.cl", "setup.cl"}), "setup");
+}
+
+void SetupStage::plan(DeviceBuffers& buffers, const FrameShape& frame, int colorChannels, bool roughnessImage) {
+  frame_ = frame;
+  colorChannels_ = colorChannels;
+  const size_t pixels = frame.pixels();
+  buffers.add(colorIn_, pixels * colorChannels * sizeof(float), CL_MEM_READ_ONLY);
+  buffers.add(depthIn_, pixels * sizeof(float), CL_MEM_READ_ONLY);
+  buffers.add(normalIn_, pixels * 3 * sizeof(float), CL_MEM_READ_ONLY);
+  buffers.add(roughnessIn_, roughnessImage ? pixels * sizeof(float) : 0, CL_MEM_READ_ONLY);
+  buffers.add(positions, pixels * sizeof(cl_float4));
+  buffers.add(normals, pixels * sizeof(cl_float4));
+  buffers.add(pixelRays, pixels * sizeof(cl_int));
+  buffers.add(rayList, pixels * sizeof(cl_int));
+  buffers.add(tileList, size_t(frame.tilesX) * frame.tilesY * sizeof(cl_int));
+  buffers.add(counts, SSRCL_COUNTERS * sizeof(cl_int));
+  buffers.add(thickness, pixels * sizeof(float));
+}
+
+void SetupStage::bind(const cl::Buffer& hzb, const cl::Buffer& colorPyramid) {
+  // Argument 0 is the parameter block, set at each enqueue. HZB and colour level 0 start at
+  // offset 0 of their buffers.
+  bindArgs(kernel_, 1, colorIn_, depthIn_, normalIn_, roughnessIn_, positions, hzb, normals, colorPyramid, pixelRays,
+           rayList, tileList, counts, thickness);
+}
+
+SetupParams SetupStage::params(const FrameShape& frame, const CameraConstants& camera, const TraceSettings& s,
+                               int colorChannels) {
+  SetupParams p{};
+  std::copy(std::begin(camera.normalMatrix), std::end(camera.normalMatrix), p.normal_matrix);
+  std::copy(std::begin(camera.invProj), std::end(camera.invProj), p.inv_proj);
+  p.width = frame.width;
+  p.height = frame.height;
+  p.near_plane = camera.nearPlane;
+  p.far_plane = camera.farPlane;
+  p.color_channels = colorChannels;
+  p.constant_roughness = s.constantRoughness < 0.0f ? -1.0f : s.constantRoughness;
+  p.max_roughness = s.maxRoughness;
+  p.mirror_roughness = s.mirrorRoughness;
+  p.samples_per_pixel = s.samplesPerPixel;
+  p.full_rays_roughness = s.fullRaysRoughness;
+  p.trace_stride = s.traceStride;
+  p.classify = s.classifyWork;
+  p.thickness_rel = s.thicknessRelative;
+  p.adaptive_thickness = s.thicknessModel == ThicknessModel::Adaptive;
+  return p;
+}
+
+void SetupStage::enqueue(cl::CommandQueue& q, const Inputs& in, const SetupParams& params, StageEvents& events) {
+  const size_t pixels = frame_.pixels();
+  q.enqueueWriteBuffer(colorIn_, CL_FALSE, 0, pixels * colorChannels_ * sizeof(float), in.color, nullptr,
+                       newEvent(events, "upload"));
+  q.enqueueWriteBuffer(depthIn_, CL_FALSE, 0, pixels * sizeof(float), in.depth, nullptr,
+                       newEvent(events, "upload"));
+  q.enqueueWriteBuffer(normalIn_, CL_FALSE, 0, pixels * 3 * sizeof(float), in.normal, nullptr,
+                       newEvent(events, "upload"));
+  q.enqueueFillBuffer(counts, cl_int(0), 0, SSRCL_COUNTERS * sizeof(cl_int), nullptr, newEvent(events, "upload"));
+  if (in.roughness)
+    q.enqueueWriteBuffer(roughnessIn_, CL_FALSE, 0, pixels * sizeof(float), in.roughness, nullptr,
+                         newEvent(events, "upload"));
+  kernel_.setArg(0, params);
+  q.enqueueNDRangeKernel(kernel_, cl::NullRange, frame_.tiled2d(), cl::NDRange(SSRCL_TILE, SSRCL_TILE), nullptr,
+                         newEvent(events, "setup"));
+}
+
+SetupStage::Counts SetupStage::readCounts(cl::CommandQueue& q) {
+  cl_int c[SSRCL_COUNTERS] = {};
+  q.enqueueReadBuffer(counts, CL_TRUE, 0, sizeof(c), c);
+  return {c[SSRCL_COUNT_LISTED], c[SSRCL_COUNT_RAYS], c[SSRCL_COUNT_TILES], c[SSRCL_COUNT_TRACED]};
+}
+
+}  // namespace ssrcl::detail

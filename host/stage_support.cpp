@@ -1,0 +1,80 @@
+#include "stage_support.hpp"
+
+#include <algorithm>
+#include <glm/gtc/matrix_inverse.hpp>
+#include <limits>
+
+namespace ssrcl::detail {
+
+FrameShape::FrameShape(int w, int h)
+    : width(w), height(h), tilesX((w + SSRCL_TILE - 1) / SSRCL_TILE), tilesY((h + SSRCL_TILE - 1) / SSRCL_TILE) {
+  int offset = 0;
+  for (;;) {
+    levels.push_back({offset, w, h, 0});
+    offset += w * h;
+    if (w == 1 && h == 1) break;
+    w = (w + 1) / 2;
+    h = (h + 1) / 2;
+  }
+}
+
+cl::NDRange FrameShape::tiled2d() const { return cl::NDRange(roundUp(width, SSRCL_TILE), roundUp(height, SSRCL_TILE)); }
+
+CameraConstants::CameraConstants(const Camera& camera) {
+  toRowMajor(camera.projection, proj);
+  toRowMajor(glm::inverse(camera.projection), invProj);
+  // Normals go to view space with the inverse transpose, which stays right for scaled views.
+  toRowMajor(glm::dmat4(glm::inverseTranspose(glm::dmat3(camera.view))), normalMatrix);
+  nearPlane = static_cast<float>(camera.nearPlane);
+  farPlane = static_cast<float>(std::min(camera.farPlane, double(std::numeric_limits<float>::max())));
+}
+
+void DeviceBuffers::add(cl::Buffer& buffer, size_t bytes, cl_mem_flags flags) {
+  planned_.push_back({&buffer, std::max<size_t>(bytes, 4), flags});  // unused ones still bind
+}
+
+bool DeviceBuffers::allocate(Device::Impl& device, const std::string& what) {
+  size_t total = 0, largest = 0;
+  for (const Planned& b : planned_) {
+    total += b.bytes;
+    largest = std::max(largest, b.bytes);
+  }
+  checkDeviceMemory(device, largest, total, what);
+  bool changed = false;
+  for (const Planned& b : planned_) {
+    auto& held = allocated_[b.buffer];
+    if (held == std::pair{b.bytes, b.flags} && (*b.buffer)()) continue;
+    *b.buffer = cl::Buffer(device.context, b.flags, b.bytes);
+    held = {b.bytes, b.flags};
+    changed = true;
+  }
+  planned_.clear();
+  bytes_ = total;
+  return changed;
+}
+
+cl::Event* newEvent(StageEvents& events, const std::string& stage) {
+  auto& list = events[stage];
+  list.emplace_back();
+  return &list.back();
+}
+
+double eventMs(const cl::Event& e) {
+  auto start = e.getProfilingInfo<CL_PROFILING_COMMAND_START>();
+  auto end = e.getProfilingInfo<CL_PROFILING_COMMAND_END>();
+  return (end - start) * 1e-6;
+}
+
+std::string roughnessMappingDefine(RoughnessMapping m) {
+  return m == RoughnessMapping::Linear ? "SSRCL_ROUGHNESS_MAPPING=SSRCL_ROUGHNESS_LINEAR"
+                                       : "SSRCL_ROUGHNESS_MAPPING=SSRCL_ROUGHNESS_SQUARED";
+}
+
+size_t roundUp(size_t n, size_t multiple) { return (n + multiple - 1) / multiple * multiple; }
+
+void toRowMajor(const glm::dmat4& m, float out[16]) {
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) out[r * 4 + c] = static_cast<float>(m[c][r]);  // glm is column-major
+}
+
+}  // namespace ssrcl::detail

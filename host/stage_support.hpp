@@ -1,0 +1,82 @@
+#pragma once
+// What the per-stage units (host/*_stage.cpp) share: the frame's shape, the camera's matrices as
+// the kernels take them, planned device buffers and profiling events.
+#include <map>
+#include <string>
+#include <vector>
+
+#include "device_impl.hpp"
+#include "ssrcl/camera.hpp"
+#include "ssrcl/pipeline.hpp"
+#include "ssrcl_shared.h"
+
+namespace ssrcl::detail {
+
+using shared::FilterParams;
+using shared::HzbLevel;
+using shared::ResolveParams;
+using shared::SetupParams;
+using shared::ThicknessParams;
+using shared::TraceParams;
+
+// The frame every stage works on: its size, its SSRCL_TILE tiles and the pyramid levels (each
+// ceil(previous / 2) down to 1x1, packed in one buffer).
+struct FrameShape {
+  int width = 0, height = 0, tilesX = 0, tilesY = 0;
+  std::vector<HzbLevel> levels;
+
+  FrameShape() = default;
+  FrameShape(int w, int h);
+  size_t pixels() const { return size_t(width) * height; }
+  size_t pyramidTexels() const { return size_t(levels.back().offset) + 1; }
+  cl::NDRange tiled2d() const;  // the frame in 2D SSRCL_TILE work-groups
+};
+
+// The camera as the kernels take it: row-major float matrices, clip planes as floats.
+struct CameraConstants {
+  float proj[16], invProj[16], normalMatrix[16];
+  float nearPlane, farPlane;
+  explicit CameraConstants(const Camera& camera);
+};
+
+// Device buffers planned by every stage before any is allocated: a frame the device cannot hold
+// fails with the sizes named (checkDeviceMemory), not with an OpenCL status from whichever buffer
+// meets the limit first. A buffer keeps its allocation while its planned size and flags stay the
+// same, so a new frame of the same size reallocates nothing.
+class DeviceBuffers {
+ public:
+  void add(cl::Buffer& buffer, size_t bytes, cl_mem_flags flags = CL_MEM_READ_WRITE);
+  // Checks the plan against the device and (re)allocates what changed; clears the plan.
+  // Returns whether anything was (re)allocated.
+  bool allocate(Device::Impl& device, const std::string& what);
+  size_t bytes() const { return bytes_; }  // of the last allocated plan
+
+ private:
+  struct Planned {
+    cl::Buffer* buffer;
+    size_t bytes;
+    cl_mem_flags flags;
+  };
+  std::vector<Planned> planned_;
+  std::map<const cl::Buffer*, std::pair<size_t, cl_mem_flags>> allocated_;
+  size_t bytes_ = 0;
+};
+
+// Profiling events of one execute, by StageTimes name ("setup", "trace", ...).
+using StageEvents = std::map<std::string, std::vector<cl::Event>>;
+cl::Event* newEvent(StageEvents& events, const std::string& stage);
+double eventMs(const cl::Event& e);
+
+// Binds a kernel's arguments from `first` on, in order.
+template <class... Args>
+void bindArgs(cl::Kernel& kernel, cl_uint first, const Args&... args) {
+  cl_uint index = first;
+  (kernel.setArg(index++, args), ...);
+}
+
+size_t roundUp(size_t n, size_t multiple);
+void toRowMajor(const glm::dmat4& m, float out[16]);
+// The SSRCL_ROUGHNESS_MAPPING define of programs that map roughness to GGX alpha.
+std::string roughnessMappingDefine(RoughnessMapping m);
+
+}  // namespace ssrcl::detail

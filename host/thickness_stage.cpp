@@ -1,0 +1,31 @@
+#include "thickness_stage.hpp"
+
+namespace ssrcl::detail {
+
+void ThicknessStage::configure(Device::Impl& device, const TraceSettings& s) {
+  enabled_ = s.thicknessModel == ThicknessModel::Adaptive;
+  if (enabled_)
+    kernel_ = cl::Kernel(device.program({"ssrcl_shared.h", "common.cl", "thickness.cl"}), "surface_thickness");
+}
+
+void ThicknessStage::plan(DeviceBuffers& buffers, const FrameShape& frame) {
+  frame_ = frame;
+  buffers.add(rowRuns_, enabled_ ? frame.pixels() * sizeof(cl_float2) : 0);
+}
+
+void ThicknessStage::bind(const SetupStage& setup) {
+  if (enabled_) bindArgs(kernel_, 1, setup.positions, rowRuns_, setup.thickness);
+}
+
+void ThicknessStage::enqueue(cl::CommandQueue& q, const TraceSettings& s, StageEvents& events) {
+  if (!enabled_) return;
+  for (cl_int axis = 0; axis < 2; ++axis) {  // rows first: the columns' pass combines both
+    const ThicknessParams p{frame_.width, frame_.height, axis, s.thicknessScale, s.thicknessMinRelative,
+                            s.thicknessMaxRelative};
+    kernel_.setArg(0, p);
+    q.enqueueNDRangeKernel(kernel_, cl::NullRange, cl::NDRange(roundUp(axis ? frame_.width : frame_.height, 16)),
+                           cl::NDRange(16), nullptr, newEvent(events, "thickness"));
+  }
+}
+
+}  // namespace ssrcl::detail

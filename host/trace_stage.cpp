@@ -1,0 +1,103 @@
+#include "trace_stage.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "settings_validation.hpp"
+
+namespace ssrcl::detail {
+namespace {
+
+const char* tracerDefine(Tracer t) {
+  return t == Tracer::Linear ? "SSRCL_TRACER=SSRCL_TRACER_LINEAR"
+         : t == Tracer::DDA  ? "SSRCL_TRACER=SSRCL_TRACER_DDA"
+                             : "SSRCL_TRACER=SSRCL_TRACER_HIZ";
+}
+
+// Ray records of all samples when they fit in this budget, else fewer samples per batch (the
+// resolve accumulates across batches, so the result is the same).
+constexpr size_t kRayRecordBudget = size_t(512) << 20;
+
+}  // namespace
+
+void TraceStage::configure(Device::Impl& device, const TraceSettings& s, bool hasBase) {
+  hasBase_ = hasBase;
+  counting_ = s.countWork;
+  const cl::Program& program =
+      device.program({"ssrcl_shared.h", "common.cl", "sequence.cl", "ggx.cl", "color_lookup.cl", "trace.cl"},
+                     {tracerDefine(s.tracer), roughnessMappingDefine(s.roughnessMapping),
+                      std::string("SSRCL_COUNT_WORK=") + (s.countWork ? "1" : "0")});
+  kernel_ = cl::Kernel(program, "trace_rays");
+  batch_ = s.samplesPerPixel;
+}
+
+void TraceStage::plan(DeviceBuffers& buffers, const FrameShape& frame) {
+  frame_ = frame;
+  const size_t pixels = frame.pixels();
+  const size_t perSample = pixels * sizeof(cl_float4);  // of each of the two record buffers
+  batch_ = std::min(batch_, static_cast<int>(std::max<size_t>(1, kRayRecordBudget / (2 * perSample))));
+  buffers.add(rayHit, perSample * batch_);
+  buffers.add(rayRadiance, perSample * batch_);
+  buffers.add(baseIn_, hasBase_ ? pixels * 3 * sizeof(float) : 0, CL_MEM_READ_ONLY);
+  buffers.add(specularIn_, hasBase_ ? pixels * 3 * sizeof(float) : 0, CL_MEM_READ_ONLY);
+  buffers.add(workCounters_, counting_ ? (SSRCL_FETCH_SLOTS + SSRCL_HISTOGRAM_BINS) * sizeof(cl_int) : 0);
+}
+
+void TraceStage::bind(const SetupStage& setup, const HzbStage& hzb, const ColorPyramidStage& colors) {
+  bindArgs(kernel_, 1, hzb.hzb, hzb.levels, setup.positions, setup.normals, setup.rayList, setup.pixelRays,
+           setup.thickness, workCounters_, colors.pyramid, baseIn_, specularIn_, rayHit, rayRadiance);
+}
+
+TraceParams TraceStage::params(const FrameShape& frame, const CameraConstants& camera, const TraceSettings& s,
+                               bool hasBase) {
+  TraceParams p{};
+  std::copy(std::begin(camera.proj), std::end(camera.proj), p.proj);
+  std::copy(std::begin(camera.invProj), std::end(camera.invProj), p.inv_proj);
+  p.width = frame.width;
+  p.height = frame.height;
+  p.near_plane = camera.nearPlane;
+  p.far_plane = camera.farPlane;
+  p.level_count = static_cast<shared::ssrcl_int>(frame.levels.size());
+  p.seed = s.seed;
+  p.mirror_roughness = s.mirrorRoughness;
+  // Each ray's cone covers its share of the lobe among all N rays the resolve combines: a
+  // reflected GGX lobe spans about 2 alpha, so a share is a cone of half-angle 2 alpha / sqrt(N).
+  const int reused = s.samplesPerPixel * (2 * s.reuseRadius + 1) * (2 * s.reuseRadius + 1);
+  p.cone_scale = s.prefilter ? 2.0f / std::sqrt(float(reused)) : 0.0f;
+  p.linear_step = s.linearStepPixels;
+  p.max_iterations = maxIterations(s);
+  p.edge_fade = s.edgeFade;
+  p.glossy_hit_roughness = s.glossyHitRoughness;
+  p.has_base = hasBase;
+  return p;  // listed, batch_size and first_sample are per batch
+}
+
+void TraceStage::upload(cl::CommandQueue& q, const float* base, const float* specular, StageEvents& events) {
+  if (counting_)
+    q.enqueueFillBuffer(workCounters_, cl_int(0), 0, (SSRCL_FETCH_SLOTS + SSRCL_HISTOGRAM_BINS) * sizeof(cl_int),
+                        nullptr, newEvent(events, "upload"));
+  if (!hasBase_) return;
+  for (const auto& [buffer, image] : {std::pair{&baseIn_, base}, std::pair{&specularIn_, specular}})
+    q.enqueueWriteBuffer(*buffer, CL_FALSE, 0, frame_.pixels() * 3 * sizeof(float), image, nullptr,
+                         newEvent(events, "upload"));
+}
+
+void TraceStage::enqueue(cl::CommandQueue& q, const TraceParams& params, StageEvents& events) {
+  kernel_.setArg(0, params);
+  q.enqueueNDRangeKernel(kernel_, cl::NullRange, cl::NDRange(roundUp(size_t(params.listed) * params.batch_size, 64)),
+                         cl::NDRange(64), nullptr, newEvent(events, "trace"));
+}
+
+void TraceStage::readWork(cl::CommandQueue& q, StageTimes& times) {
+  times.depthFetches = 0;
+  times.iterationHistogram.clear();
+  if (!counting_) return;
+  std::vector<cl_int> counters(SSRCL_FETCH_SLOTS + SSRCL_HISTOGRAM_BINS);
+  q.enqueueReadBuffer(workCounters_, CL_TRUE, 0, counters.size() * sizeof(cl_int), counters.data());
+  for (size_t k = 0; k < SSRCL_FETCH_SLOTS; ++k) times.depthFetches += static_cast<unsigned>(counters[k]);
+  times.iterationHistogram.assign(counters.begin() + SSRCL_FETCH_SLOTS, counters.end());
+  while (!times.iterationHistogram.empty() && times.iterationHistogram.back() == 0)
+    times.iterationHistogram.pop_back();
+}
+
+}  // namespace ssrcl::detail

@@ -1,0 +1,36 @@
+#pragma once
+// Ray generation and tracing (kernels/trace.cl): rays for the listed pixels, traced through the
+// depth buffer by the tracer the settings name (a program variant), shaded at their hits. Owns the
+// ray records the resolve reads, the optional base/specular passes and the counting mode's
+// counters. Samples are traced in batches when all of them would not fit the record budget.
+#include "color_pyramid_stage.hpp"
+#include "setup_stage.hpp"
+
+namespace ssrcl::detail {
+
+class TraceStage {
+ public:
+  void configure(Device::Impl& device, const TraceSettings& s, bool hasBase);
+  void plan(DeviceBuffers& buffers, const FrameShape& frame);
+  void bind(const SetupStage& setup, const HzbStage& hzb, const ColorPyramidStage& colors);
+  // Uploads base and specular (packed floats, when set) and clears the counters (counting mode).
+  void upload(cl::CommandQueue& q, const float* base, const float* specular, StageEvents& events);
+  // One batch: samples [params.first_sample, + batchSize()) of the `listed` pixels.
+  void enqueue(cl::CommandQueue& q, const TraceParams& params, StageEvents& events);
+  // Counting mode: texel reads and the iteration histogram into `times` (waits for the queue).
+  void readWork(cl::CommandQueue& q, StageTimes& times);
+  static TraceParams params(const FrameShape& frame, const CameraConstants& camera, const TraceSettings& s,
+                            bool hasBase);
+
+  int batchSize() const { return batch_; }  // samples per pixel in the ray records
+  cl::Buffer rayHit, rayRadiance;            // per (pixel, batch slot); see kernels/trace.cl
+
+ private:
+  bool hasBase_ = false, counting_ = false;
+  int batch_ = 1;
+  FrameShape frame_;
+  cl::Kernel kernel_;
+  cl::Buffer baseIn_, specularIn_, workCounters_;
+};
+
+}  // namespace ssrcl::detail

@@ -1,0 +1,116 @@
+// The contract between the host and the kernels: constants, the HZB level table and each stage's
+// parameters as one struct (passed by value, FidelityFX SSSR's constants block), compiled by both
+// sides so they cannot drift apart. Plain C: only 4-byte scalars and arrays of them, so the layout
+// is the same on the host and every OpenCL device. Variants (tracer, roughness mapping, counting
+// mode) are not parameters but compile-time defines (host/program_cache.hpp keys programs by them).
+#ifndef SSRCL_SHARED_H
+#define SSRCL_SHARED_H
+
+#ifndef __OPENCL_VERSION__
+#include <cstdint>
+namespace ssrcl::shared {
+typedef std::int32_t ssrcl_int;
+typedef std::uint32_t ssrcl_uint;
+#else
+typedef int ssrcl_int;
+typedef uint ssrcl_uint;
+#endif
+
+// Work is classified in tiles of SSRCL_TILE x SSRCL_TILE pixels, the 2D work-group size.
+#define SSRCL_TILE 8
+// Counting mode: per-ray texel reads summed over SSRCL_FETCH_SLOTS 32-bit slots (they cannot
+// overflow on any frame; the host adds them in 64 bits), then SSRCL_HISTOGRAM_BINS power-of-two
+// bins of iterations (bin b holds [2^(b-1), 2^b), bin 0 holds 0).
+#define SSRCL_FETCH_SLOTS 1024
+#define SSRCL_HISTOGRAM_BINS 33
+// The counters setup fills: listed pixels, rays, listed tiles, pixels with rays.
+#define SSRCL_COUNT_LISTED 0
+#define SSRCL_COUNT_RAYS 1
+#define SSRCL_COUNT_TILES 2
+#define SSRCL_COUNT_TRACED 3
+#define SSRCL_COUNTERS 4
+
+// Values of the SSRCL_TRACER and SSRCL_ROUGHNESS_MAPPING program defines.
+#define SSRCL_TRACER_HIZ 0
+#define SSRCL_TRACER_LINEAR 1
+#define SSRCL_TRACER_DDA 2
+#define SSRCL_ROUGHNESS_SQUARED 0
+#define SSRCL_ROUGHNESS_LINEAR 1
+
+// One level of the HZB and colour pyramids: offset into the packed mip buffer and its size.
+typedef struct {
+  ssrcl_int offset;
+  ssrcl_int width;
+  ssrcl_int height;
+  ssrcl_int pad;
+} HzbLevel;
+
+// Matrices are 16 floats in row-major order (the first four are the first row), acting on column
+// vectors; the kernels load them as float16.
+
+// kernels/setup.cl
+typedef struct {
+  float normal_matrix[16];  // world -> view for normals (inverse transpose of the view's 3x3)
+  float inv_proj[16];
+  ssrcl_int width, height;
+  float near_plane, far_plane;
+  ssrcl_int color_channels;     // 3 or 4; only RGB is read
+  float constant_roughness;     // >= 0 replaces the roughness image
+  float max_roughness;          // rougher pixels get no ray
+  float mirror_roughness;       // at or below: one mirror ray
+  ssrcl_int samples_per_pixel;  // rays per glossy pixel
+  float full_rays_roughness;    // > 0: ray counts follow roughness up to this
+  ssrcl_int trace_stride;       // 1, or 2: glossy rays in one pixel of each 2x2 block
+  ssrcl_int classify;           // 0: every pixel and tile listed (the unclassified baseline)
+  float thickness_rel;          // constant thickness model: share of depth
+  ssrcl_int adaptive_thickness;  // 1: kernels/thickness.cl finishes the thickness
+} SetupParams;
+
+// kernels/thickness.cl
+typedef struct {
+  ssrcl_int width, height;
+  ssrcl_int axis;  // 0: rows, 1: columns
+  float scale, min_rel, max_rel;
+} ThicknessParams;
+
+// kernels/trace.cl (tracer, roughness mapping and counting mode are program defines)
+typedef struct {
+  float proj[16];
+  float inv_proj[16];
+  ssrcl_int width, height;
+  float near_plane, far_plane;
+  ssrcl_int level_count;   // HZB and colour pyramid levels
+  ssrcl_int listed;        // pixels in the ray list
+  ssrcl_int batch_size;    // samples per pixel in this pass's ray records
+  ssrcl_int first_sample;  // sample index of the pass's first slot
+  ssrcl_uint seed;
+  float mirror_roughness;
+  float cone_scale;        // prefiltered hits: share of the lobe per ray; 0 reads full resolution
+  float linear_step;       // linear tracer's step in pixels
+  ssrcl_int max_iterations;
+  float edge_fade;
+  float glossy_hit_roughness;
+  ssrcl_int has_base;      // base and specular images are bound
+} TraceParams;
+
+// kernels/resolve.cl (roughness mapping is a program define)
+typedef struct {
+  float inv_proj[16];
+  ssrcl_int width, height;
+  ssrcl_int tiles_x;
+  ssrcl_int batch_size, first_sample;
+  float mirror_roughness;
+  ssrcl_int reuse_radius;
+} ResolveParams;
+
+// kernels/denoise.cl
+typedef struct {
+  ssrcl_int width, height;
+  ssrcl_int tiles_x;
+  float mirror_roughness;
+} FilterParams;
+
+#ifndef __OPENCL_VERSION__
+}  // namespace ssrcl::shared
+#endif
+#endif

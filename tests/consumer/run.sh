@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# Installs a build into a temporary prefix, then builds and runs tests/consumer against it, once
+# through find_package(ssrcl) and once through pkg-config; and checks that libssrcl.so exports
+# the API only.   tests/consumer/run.sh <build dir>
+set -euo pipefail
+build=$(cd "$1" && pwd)
+src=$(cd "$(dirname "$0")" && pwd)
+tmp=$(mktemp -d "${TMPDIR:-/tmp}/ssrcl-consumer.XXXXXX")
+trap 'rm -rf "$tmp"' EXIT
+
+cmake --install "$build" --prefix "$tmp/prefix" >/dev/null
+cmake -S "$src" -B "$tmp/build" -DCMAKE_PREFIX_PATH="$tmp/prefix" -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build "$tmp/build" >/dev/null
+"$tmp/build/ssrcl_consumer"
+
+libdir=$(dirname "$(find "$tmp/prefix" -name 'libssrcl.so' | head -n1)")
+export PKG_CONFIG_PATH=$libdir/pkgconfig
+# shellcheck disable=SC2046
+c++ -std=c++17 "$src/main.cpp" $(pkg-config --cflags --libs ssrcl) -o "$tmp/pkg_consumer"
+LD_LIBRARY_PATH=$libdir "$tmp/pkg_consumer"
+
+soname=$(objdump -p "$libdir/libssrcl.so" | awk '/SONAME/ {print $2}')
+[[ $soname == libssrcl.so.[0-9]* ]] || { echo "unversioned SONAME: $soname"; exit 1; }
+foreign=$(nm -DC --defined-only "$libdir/libssrcl.so" | cut -d' ' -f3- |
+          grep -v -E '^(ssrcl::|typeinfo for ssrcl::|typeinfo name for ssrcl::|vtable for ssrcl::)' |
+          grep -v -E '^ssrcl::detail::' || true)
+internal=$(nm -DC --defined-only "$libdir/libssrcl.so" | cut -d' ' -f3- | grep -E '^ssrcl::detail::' || true)
+if [[ -n $foreign || -n $internal ]]; then
+  echo "libssrcl.so exports more than the API:"
+  echo "$foreign$internal" | head -20
+  exit 1
+fi
+echo "consumer: built and ran against the installed package ($soname)"
