@@ -1,0 +1,227 @@
+// The pipeline's public API beyond one commit and execute: caller-owned images of any layout,
+// frames of a sequence committed on one pipeline, settings changed after commit, progress and
+// cancel, misuse. Truth is the same pipeline run the plain way (one fresh pipeline, owning Images).
+#include <gtest/gtest.h>
+
+#include <Imath/half.h>
+
+#include <cstring>
+
+#include "scenes/analytic_scene.hpp"
+#include "ssrcl/ssrcl.hpp"
+#include "support/test_device.hpp"
+
+namespace {
+
+using ssrcl::Image;
+using ssrcl::ImageView;
+using ssrcl::PixelFormat;
+using ssrcl::TraceSettings;
+
+ssrcl::Device& device() {
+  static ssrcl::Device d = ssrcl::test::testDevice();
+  return d;
+}
+
+struct Frame {
+  ssrcl::Camera camera;
+  ssrcl::GBuffer g;
+};
+
+// Spheres on a glossy floor; `shift` moves the camera so consecutive frames differ.
+Frame render(int width, int height, double shift = 0.0) {
+  const ssrcl::test::Scene scene = ssrcl::test::makeScene("spheres_on_mirror");
+  Frame f;
+  ssrcl::test::ViewParams view = scene.view;
+  view.eye.x += shift;
+  f.camera = ssrcl::test::makeCamera(view, width, height);
+  ssrcl::test::AnalyticGBuffer g = ssrcl::test::renderGBuffer(scene, f.camera);
+  f.g = static_cast<ssrcl::GBuffer&>(g);
+  for (float& r : f.g.roughness.data) r = 0.3f;  // glossy: every stage runs
+  return f;
+}
+
+TraceSettings glossy() {
+  TraceSettings s;
+  s.samplesPerPixel = 2;
+  s.denoise = true;
+  return s;
+}
+
+struct Output {
+  Image rgba, distance;
+};
+
+// The plain way: a fresh pipeline, Image inputs, outputs read with output().
+Output reference(const Frame& f, const TraceSettings& s) {
+  ssrcl::Pipeline p(device());
+  p.setGBuffer(f.g);
+  p.setCamera(f.camera);
+  p.settings() = s;
+  p.commit();
+  p.execute();
+  const Image& rgba = p.output("reflection");
+  size_t found = 0;  // the comparisons mean something only where the pass is not empty
+  for (size_t i = 3; i < rgba.data.size(); i += 4) found += rgba.data[i] > 0.5f;
+  EXPECT_GT(found, rgba.data.size() / 4 / 10) << "the scene reflects little";
+  return {rgba, p.output("distance")};
+}
+
+void expectSame(const Output& a, const Output& b) {
+  EXPECT_EQ(a.rgba.data, b.rgba.data);
+  EXPECT_EQ(a.distance.data, b.distance.data);
+}
+
+TEST(PipelineApi, FramesOfOneSizeReuseThePipelineAndGiveFreshPipelinesOutput) {
+  ssrcl::Pipeline p(device());
+  p.settings() = glossy();
+  size_t bytes = 0;
+  for (int k = 0; k < 3; ++k) {
+    SCOPED_TRACE(k);
+    const Frame f = render(96, 64, 0.05 * k);
+    p.setGBuffer(f.g);
+    p.setCamera(f.camera);
+    p.commit();
+    if (k > 0) EXPECT_EQ(p.deviceBytes(), bytes);
+    bytes = p.deviceBytes();
+    p.execute();
+    expectSame({p.output("reflection"), p.output("distance")}, reference(f, glossy()));
+  }
+  // Another size replans.
+  const Frame other = render(64, 96);
+  p.setGBuffer(other.g);
+  p.setCamera(other.camera);
+  p.commit();
+  p.execute();
+  expectSame({p.output("reflection"), p.output("distance")}, reference(other, glossy()));
+}
+
+TEST(PipelineApi, SettingsChangedAfterCommitAreValidatedAndApplied) {
+  const Frame f = render(96, 64);
+  ssrcl::Pipeline p(device());
+  p.setGBuffer(f.g);
+  p.setCamera(f.camera);
+  p.settings() = glossy();
+  p.commit();
+  p.execute();
+  // More rays and another tracer after commit: execute() plans again.
+  TraceSettings changed = glossy();
+  changed.samplesPerPixel = 6;
+  changed.tracer = ssrcl::Tracer::DDA;
+  changed.prefilter = false;
+  p.settings() = changed;
+  p.execute();
+  expectSame({p.output("reflection"), p.output("distance")}, reference(f, changed));
+  p.settings().samplesPerPixel = 0;
+  try {
+    p.execute();
+    FAIL() << "no error";
+  } catch (const ssrcl::Error& e) {
+    EXPECT_EQ(e.code(), ssrcl::ErrorCode::InvalidArgument);
+    EXPECT_NE(std::string(e.what()).find("spp"), std::string::npos) << e.what();
+  }
+}
+
+TEST(PipelineApi, ViewsOfAnyLayoutReadAndWriteTheCallersMemory) {
+  const Frame f = render(80, 48);
+  const int w = f.camera.width, h = f.camera.height;
+  // Colour as half in RGBA pixels with padded rows, depth as float with a pixel stride of 8 bytes.
+  const size_t colorRow = size_t(w) * 4 * sizeof(Imath::half) + 24;
+  std::vector<unsigned char> colorBytes(colorRow * h);
+  Image colorAsHalf(w, h, 3);  // what the pipeline sees: the half-rounded values
+  std::vector<float> depthPadded(size_t(w) * h * 2, -7.0f);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      for (int c = 0; c < 3; ++c) {
+        const Imath::half v(f.g.color.at(x, y, c));
+        std::memcpy(&colorBytes[y * colorRow + (x * 4 + c) * 2], &v, 2);
+        colorAsHalf.at(x, y, c) = float(v);
+      }
+      depthPadded[(size_t(y) * w + x) * 2] = f.g.depth.at(x, y, 0);
+    }
+  // Outputs: reflection as half, distance as float every other float.
+  std::vector<Imath::half> reflection(size_t(w) * h * 4);
+  std::vector<float> distance(size_t(w) * h * 2, -1.0f);
+
+  ssrcl::Pipeline p(device());
+  p.setImage("color", ImageView(colorBytes.data(), PixelFormat::Half, w, h, 3, 4 * sizeof(Imath::half), colorRow));
+  p.setImage("depth", ImageView(depthPadded.data(), PixelFormat::Float, w, h, 1, 2 * sizeof(float)));
+  p.setImage("normal", ImageView(f.g.normal.data.data(), w, h, 3));
+  p.setImage("roughness", f.g.roughness);
+  p.setOutput("reflection", ImageView(reflection.data(), PixelFormat::Half, w, h, 4));
+  p.setOutput("distance", ImageView(distance.data(), PixelFormat::Float, w, h, 1, 2 * sizeof(float)));
+  p.setCamera(f.camera);
+  p.settings() = glossy();
+  p.commit();
+  p.execute();
+
+  Frame plain = f;
+  plain.g.color = colorAsHalf;
+  const Output truth = reference(plain, glossy());
+  expectSame({p.output("reflection"), p.output("distance")}, truth);
+  size_t wrong = 0;
+  for (size_t i = 0; i < truth.rgba.data.size(); ++i)
+    wrong += float(reflection[i]) != float(Imath::half(truth.rgba.data[i]));
+  for (size_t i = 0; i < truth.distance.data.size(); ++i)
+    wrong += distance[2 * i] != truth.distance.data[i] || distance[2 * i + 1] != -1.0f;
+  EXPECT_EQ(wrong, 0u);
+}
+
+TEST(PipelineApi, ProgressReachesOneAndFalseCancels) {
+  const Frame f = render(64, 48);
+  ssrcl::Pipeline p(device());
+  p.setGBuffer(f.g);
+  p.setCamera(f.camera);
+  p.settings() = glossy();
+  std::vector<double> seen;
+  p.setProgressMonitor([&](double done) {
+    seen.push_back(done);
+    return true;
+  });
+  p.commit();
+  p.execute();
+  ASSERT_FALSE(seen.empty());
+  EXPECT_TRUE(std::is_sorted(seen.begin(), seen.end()));
+  EXPECT_EQ(seen.back(), 1.0);
+  const Image before = p.output("reflection");
+
+  const Frame moved = render(64, 48, 0.2);
+  p.setGBuffer(moved.g);
+  p.setCamera(moved.camera);
+  p.setProgressMonitor([](double) { return false; });
+  p.commit();
+  try {
+    p.execute();
+    FAIL() << "not cancelled";
+  } catch (const ssrcl::Error& e) {
+    EXPECT_EQ(e.code(), ssrcl::ErrorCode::Cancelled) << e.what();
+  }
+  EXPECT_EQ(p.output("reflection").data, before.data);  // the cancelled frame wrote nothing
+}
+
+TEST(PipelineApi, MisuseIsInvalidOperation) {
+  const Frame f = render(32, 32);
+  ssrcl::Pipeline p(device());
+  const auto expectInvalidOperation = [&] {
+    try {
+      p.execute();
+      ADD_FAILURE() << "no error";
+    } catch (const ssrcl::Error& e) {
+      EXPECT_EQ(e.code(), ssrcl::ErrorCode::InvalidOperation) << e.what();
+    }
+  };
+  expectInvalidOperation();  // never committed
+  p.setGBuffer(f.g);
+  p.setCamera(f.camera);
+  p.commit();
+  p.execute();
+  p.setImage("depth", f.g.depth);  // an input changed since the commit
+  expectInvalidOperation();
+}
+
+TEST(Version, RuntimeMatchesTheHeaders) {
+  EXPECT_STREQ(ssrcl::versionString(), SSRCL_VERSION);
+  EXPECT_EQ(ssrcl::versionNumber(), SSRCL_VERSION_MAJOR * 10000 + SSRCL_VERSION_MINOR * 100 + SSRCL_VERSION_PATCH);
+}
+
+}  // namespace
