@@ -12,8 +12,11 @@ import time
 
 import bpy
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import export_camera  # noqa: E402  (needs the path tweak above)
+if __package__:  # imported from the ssrcl add-on, which links this file: no sys.path change
+    from . import export_camera
+else:
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    import export_camera  # noqa: E402  (needs the path tweak above)
 
 WIDTH, HEIGHT = 480, 270
 AOV_NAME = "roughness"

@@ -1,0 +1,37 @@
+"""ssrcl Blender add-on: one button sets a scene up for ssrcl's screen-space reflection pass.
+
+Set Up (Render properties > ssrcl Reflections) enables Z, Normal, the glossy passes and a roughness
+AOV wired into every Principled material, and the multilayer EXR output; then every rendered frame
+gets its camera sidecar, ssrcl traces the frames when the render is done, and the pass appears in
+the compositor as an Image node wired into a "reflection over environment" node group.
+"""
+import bpy
+
+from . import handlers, operators, preferences, ui
+
+bl_info = {
+    "name": "ssrcl Reflection Pass",
+    "author": "ssrcl",
+    "version": (0, 1, 0),
+    "blender": (3, 4, 0),
+    "location": "Properties > Render > ssrcl Reflections",
+    "description": "Screen-space reflection pass from the render's G-buffer with the ssrcl CLI",
+    "category": "Render",
+}
+
+_CLASSES = (preferences.SsrclPreferences, preferences.SsrclSceneSettings,
+            operators.SSRCL_OT_setup, operators.SSRCL_OT_trace_render, ui.SSRCL_PT_render)
+
+
+def register():
+    for cls in _CLASSES:
+        bpy.utils.register_class(cls)
+    bpy.types.Scene.ssrcl = bpy.props.PointerProperty(type=preferences.SsrclSceneSettings)
+    handlers.register()
+
+
+def unregister():
+    handlers.unregister()
+    del bpy.types.Scene.ssrcl
+    for cls in reversed(_CLASSES):
+        bpy.utils.unregister_class(cls)
