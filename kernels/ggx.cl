@@ -45,9 +45,9 @@ inline float ggx_vndf_reflection_pdf(float3 o, float3 l, float alpha) {
 // stretch the view to the unit-roughness configuration, sample the projected hemisphere there,
 // unstretch. Stable for alpha -> 0 (returns +Z) and for grazing o.
 inline float3 ggx_sample_vndf(float3 o, float alpha, float2 u) {
-  float3 vh = normalize((float3)(alpha * o.x, alpha * o.y, o.z));
+  float3 vh = normalize(SSRCL_FLOAT3(alpha * o.x, alpha * o.y, o.z));
   float lensq = vh.x * vh.x + vh.y * vh.y;
-  float3 t1 = lensq > 0.0f ? (float3)(-vh.y, vh.x, 0.0f) * rsqrt(lensq) : (float3)(1.0f, 0.0f, 0.0f);
+  float3 t1 = lensq > 0.0f ? SSRCL_FLOAT3(-vh.y, vh.x, 0.0f) * rsqrt(lensq) : SSRCL_FLOAT3(1.0f, 0.0f, 0.0f);
   float3 t2 = cross(vh, t1);
   float r = sqrt(u.x);
   float phi = 2.0f * SSRCL_PI * u.y;
@@ -57,7 +57,7 @@ inline float3 ggx_sample_vndf(float3 o, float alpha, float2 u) {
   p2 = (1.0f - s) * sqrt(fmax(1.0f - p1 * p1, 0.0f)) + s * p2;
   float3 nh = p1 * t1 + p2 * t2 + sqrt(fmax(1.0f - p1 * p1 - p2 * p2, 0.0f)) * vh;
   // z kept off 0: at alpha -> 0 a rounding to 0 would turn the mirror normal into a horizontal one.
-  return normalize((float3)(alpha * nh.x, alpha * nh.y, fmax(nh.z, 1e-6f)));
+  return normalize(SSRCL_FLOAT3(alpha * nh.x, alpha * nh.y, fmax(nh.z, 1e-6f)));
 }
 
 // Orthonormal basis around unit n (Duff et al. 2017, branchless).
@@ -65,8 +65,8 @@ inline void basis_from_normal(float3 n, float3* t, float3* b) {
   float sign = n.z >= 0.0f ? 1.0f : -1.0f;
   float a = -1.0f / (sign + n.z);
   float c = n.x * n.y * a;
-  *t = (float3)(1.0f + sign * n.x * n.x * a, sign * c, -sign * n.x);
-  *b = (float3)(c, sign + n.y * n.y * a, -n.y);
+  *t = SSRCL_FLOAT3(1.0f + sign * n.x * n.x * a, sign * c, -sign * n.x);
+  *b = SSRCL_FLOAT3(c, sign + n.y * n.y * a, -n.y);
 }
 
 // Roughness to alpha: Cycles and most renderers square it (SSRCL_ROUGHNESS_SQUARED), or linear.

@@ -16,6 +16,13 @@ typedef int ssrcl_int;
 typedef uint ssrcl_uint;
 #endif
 
+// Vector literals in the files the host compiles too (ggx.cl, sequence.cl; host/opencl_c_on_host.hpp
+// defines them for C++, where `(float3)(x, y, z)` would silently be a cast of a comma expression).
+#ifdef __OPENCL_VERSION__
+#define SSRCL_FLOAT2(x, y) ((float2)(x, y))
+#define SSRCL_FLOAT3(x, y, z) ((float3)(x, y, z))
+#endif
+
 // Work is classified in tiles of SSRCL_TILE x SSRCL_TILE pixels, the 2D work-group size.
 #define SSRCL_TILE 8
 // Counting mode: per-ray texel reads summed over SSRCL_FETCH_SLOTS 32-bit slots (they cannot

@@ -1,6 +1,6 @@
 // Statistical tests of the GGX visible-normal sampler (Heitz 2018) as kernels/ggx.cl implements it,
-// run through the ggx_sample_directions hook, against the double-precision textbook GGX in
-// support/ggx_reference.hpp.
+// the very source the tracer compiles, here compiled for the host (host/opencl_c_on_host.hpp),
+// against the double-precision textbook GGX in support/ggx_reference.hpp.
 //
 // Chi-square (the pbrt-v4 bsdfs_test approach): the sampled l are binned, each bin's expected count
 // is N times the integral of the analytic l-density over it, bins expecting < 5 are pooled, and
@@ -22,19 +22,12 @@
 
 #include "support/ggx_probe.hpp"
 #include "support/ggx_reference.hpp"
-#include "support/test_device.hpp"
 
 namespace {
 
 using glm::dvec3;
 namespace ggx = ssrcl::test::ggx;
 using ggx::kPi;
-
-// One device (and one program build) for the whole file.
-const ssrcl::Device& device() {
-  static const ssrcl::Device d = ssrcl::test::testDevice();
-  return d;
-}
 
 // Unit view direction in the xz plane with N.V = cosTheta, as the float vector the kernel gets.
 glm::vec3 viewWithCos(double cosTheta) {
@@ -242,7 +235,7 @@ TEST_P(GgxLobe, ChiSquareMatchesAnalyticDensity) {
   const LobeCase c = GetParam();
   const glm::vec3 of = viewWithCos(c.cosView);
   const dvec3 o = toDouble(of);
-  const auto samples = ssrcl::test::sampleGgxDirections(device(), of, float(c.alpha), kSamples, 17);
+  const auto samples = ssrcl::test::sampleGgxDirections(of, float(c.alpha), kSamples, 17);
   ASSERT_TRUE(std::all_of(samples.begin(), samples.end(), finiteDirection));
   const ChiSquare r = vndfChiSquare(samples, o, c.alpha);
   // The reference integrates to 1 over the l of h.z > 0: a check of it and of the quadrature.
@@ -261,7 +254,7 @@ TEST_P(GgxLobe, KernelPdfMatchesReference) {
   const LobeCase c = GetParam();
   const glm::vec3 of = viewWithCos(c.cosView);
   const dvec3 o = toDouble(of);
-  const auto samples = ssrcl::test::sampleGgxDirections(device(), of, float(c.alpha), 1 << 16, 5);
+  const auto samples = ssrcl::test::sampleGgxDirections(of, float(c.alpha), 1 << 16, 5);
   int wrong = 0;
   for (const glm::vec4& s : samples) {
     const dvec3 l = sampleDirection(s);
@@ -284,7 +277,7 @@ TEST(GgxSampler, ChiSquareRejectsWrongHypotheses) {
     const double alpha = lobe.first, cosView = lobe.second;  // named, not bound: lambdas capture them
     const glm::vec3 of = viewWithCos(cosView);
     const dvec3 o = toDouble(of);
-    const auto samples = ssrcl::test::sampleGgxDirections(device(), of, float(alpha), kSamples, 17);
+    const auto samples = ssrcl::test::sampleGgxDirections(of, float(alpha), kSamples, 17);
     const ChiSquare offAlpha = vndfChiSquare(samples, o, 1.1 * alpha);
     EXPECT_LT(offAlpha.pValue, kThreshold)
         << "alpha " << alpha << ": chi2 " << offAlpha.chi2 << " dof " << offAlpha.dof;
@@ -341,7 +334,7 @@ TEST(GgxSampler, NearDeltaLobeStaysAtMirrorDirection) {
   for (const glm::vec3& of :
        {viewWithCos(1.0), viewWithCos(0.5), viewWithCos(1e-3), viewWithCos(1e-6), glm::vec3(1e-3f, 0.0f, 1e-9f)}) {
     const dvec3 o = toDouble(of), mirror = ggx::mirror(o);
-    const auto samples = ssrcl::test::sampleGgxDirections(device(), of, alpha, 1 << 18, 3);
+    const auto samples = ssrcl::test::sampleGgxDirections(of, alpha, 1 << 18, 3);
     int outside = 0;
     double worst = 0;
     for (const glm::vec4& s : samples) {
@@ -365,7 +358,7 @@ TEST(GgxSampler, ExtremeInputsGiveFiniteOutputs) {
   for (double cosView : {1.0, 0.5, 1e-3}) {
     const glm::vec3 of = viewWithCos(cosView);
     const dvec3 mirror = ggx::mirror(toDouble(of));
-    for (const glm::vec4& s : ssrcl::test::sampleGgxDirections(device(), of, 0.0f, n, 1)) {
+    for (const glm::vec4& s : ssrcl::test::sampleGgxDirections(of, 0.0f, n, 1)) {
       ASSERT_TRUE(finiteDirection(s));
       ASSERT_LT(angle(sampleDirection(s), mirror), 1e-6) << "N.V " << cosView;
     }
@@ -375,16 +368,16 @@ TEST(GgxSampler, ExtremeInputsGiveFiniteOutputs) {
   for (float alpha : {0.0f, 1e-4f, 0.25f, 1.0f})
     for (double cosView : {1.0, 0.5, 1e-3, 0.0}) {
       if (alpha == 0.0f && cosView > 0) continue;  // done above
-      for (const glm::vec4& s : ssrcl::test::sampleGgxDirections(device(), viewWithCos(cosView), alpha, n, 1)) {
+      for (const glm::vec4& s : ssrcl::test::sampleGgxDirections(viewWithCos(cosView), alpha, n, 1)) {
         ASSERT_TRUE(finite(s) && isUnit(s) && s.w >= 0) << "alpha " << alpha << " N.V " << cosView;
         if (cosView == 0.0) ASSERT_EQ(s.w, 0.0f) << "alpha " << alpha;
       }
     }
   // o of any length: the hook normalizes it.
   const glm::vec3 unit = glm::normalize(glm::vec3(3, 4, 5));
-  const auto ref = ssrcl::test::sampleGgxDirections(device(), unit, 0.25f, n, 1);
+  const auto ref = ssrcl::test::sampleGgxDirections(unit, 0.25f, n, 1);
   for (float scale : {1e-15f, 1e-3f, 1e3f, 1e15f}) {
-    const auto scaled = ssrcl::test::sampleGgxDirections(device(), unit * scale, 0.25f, n, 1);
+    const auto scaled = ssrcl::test::sampleGgxDirections(unit * scale, 0.25f, n, 1);
     for (int i = 0; i < n; ++i) {
       ASSERT_LT(glm::length(glm::vec3(scaled[i]) - glm::vec3(ref[i])), 1e-5f) << "scale " << scale;
       ASSERT_NEAR(scaled[i].w, ref[i].w, 1e-4f * ref[i].w) << "scale " << scale;
@@ -395,9 +388,9 @@ TEST(GgxSampler, ExtremeInputsGiveFiniteOutputs) {
 TEST(GgxSampler, SameSeedSameBitsOtherSeedOtherSamples) {
   const glm::vec3 of = viewWithCos(0.5);
   const int n = 1 << 16;
-  const auto a = ssrcl::test::sampleGgxDirections(device(), of, 0.25f, n, 7);
-  const auto b = ssrcl::test::sampleGgxDirections(device(), of, 0.25f, n, 7);
-  const auto c = ssrcl::test::sampleGgxDirections(device(), of, 0.25f, n, 8);
+  const auto a = ssrcl::test::sampleGgxDirections(of, 0.25f, n, 7);
+  const auto b = ssrcl::test::sampleGgxDirections(of, 0.25f, n, 7);
+  const auto c = ssrcl::test::sampleGgxDirections(of, 0.25f, n, 8);
   EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(glm::vec4)), 0);
   int same = 0;
   for (int i = 0; i < n; ++i) same += glm::vec3(a[i]) == glm::vec3(c[i]);
