@@ -36,8 +36,10 @@ void validateSettings(const TraceSettings& s) {
                 "parameters thickness-min and thickness-max must be positive numbers, min <= max");
   if (!(s.glossyHitRoughness >= 0.0f && s.glossyHitRoughness <= 1.0f))
     throw Error(ErrorCode::InvalidArgument, "parameter glossy-hit-roughness must be in [0, 1]");
-  if (s.maxIterations < 0) throw Error(ErrorCode::InvalidArgument, "parameter max-iterations must be at least 1 (0: the tracer's own)");
-  if (!(s.maxRoughness >= 0.0f)) throw Error(ErrorCode::InvalidArgument, "parameter max-roughness must be >= 0");
+  if (s.maxIterations < 0)
+    throw Error(ErrorCode::InvalidArgument, "parameter max-iterations must be >= 0 (0: the tracer's own)");
+  if (!(s.maxRoughness >= 0.0f && s.maxRoughness <= 1.0f))
+    throw Error(ErrorCode::InvalidArgument, "parameter max-roughness must be in [0, 1]");
   if (!(s.edgeFade >= 0.0f && s.edgeFade <= 0.5f))
     throw Error(ErrorCode::InvalidArgument, "parameter edge-fade must be in [0, 0.5]");
   if (std::isnan(s.constantRoughness)) throw Error(ErrorCode::InvalidArgument, "parameter roughness is NaN");
