@@ -103,6 +103,18 @@ struct Found {
   cl::Device device;
 };
 
+DeviceInfo describe(const cl::Device& d, int index) {
+  DeviceInfo info;
+  info.index = index;
+  info.platform = cl::Platform(d.getInfo<CL_DEVICE_PLATFORM>()).getInfo<CL_PLATFORM_NAME>();
+  info.name = d.getInfo<CL_DEVICE_NAME>();
+  info.version = d.getInfo<CL_DEVICE_VERSION>();
+  info.isGpu = (d.getInfo<CL_DEVICE_TYPE>() & CL_DEVICE_TYPE_GPU) != 0;
+  info.globalMemory = d.getInfo<CL_DEVICE_GLOBAL_MEM_SIZE>();
+  info.computeUnits = static_cast<int>(d.getInfo<CL_DEVICE_MAX_COMPUTE_UNITS>());
+  return info;
+}
+
 std::vector<Found> enumerate() {
   std::vector<Found> found;
   std::vector<cl::Platform> platforms;
@@ -120,18 +132,7 @@ std::vector<Found> enumerate() {
     } catch (const cl::Error&) {
       continue;  // a platform with no devices is not an error either
     }
-    for (const cl::Device& d : devices) {
-      Found f;
-      f.info.index = static_cast<int>(found.size());
-      f.info.platform = platform.getInfo<CL_PLATFORM_NAME>();
-      f.info.name = d.getInfo<CL_DEVICE_NAME>();
-      f.info.version = d.getInfo<CL_DEVICE_VERSION>();
-      f.info.isGpu = (d.getInfo<CL_DEVICE_TYPE>() & CL_DEVICE_TYPE_GPU) != 0;
-      f.info.globalMemory = d.getInfo<CL_DEVICE_GLOBAL_MEM_SIZE>();
-      f.info.computeUnits = static_cast<int>(d.getInfo<CL_DEVICE_MAX_COMPUTE_UNITS>());
-      f.device = d;
-      found.push_back(std::move(f));
-    }
+    for (const cl::Device& d : devices) found.push_back({describe(d, static_cast<int>(found.size())), d});
   }
   return found;
 }
@@ -236,6 +237,23 @@ Device::Device(int index) {
     throw Error(ErrorCode::NoDevice, "no OpenCL device with index " + std::to_string(index) + " (" +
                                          std::to_string(found.size()) + " found; see `ssrcl devices`)");
   impl_ = open(found[index]);
+}
+
+Device::Device(_cl_device_id* device, _cl_context* context, _cl_command_queue* queue) {
+  auto impl = std::make_shared<Impl>();
+  try {
+    impl->device = cl::Device(device, true);  // retained: the caller may release theirs
+    impl->context = cl::Context(context, true);
+    impl->queue = cl::CommandQueue(queue, true);
+    impl->info = describe(impl->device, -1);
+    const auto properties = impl->queue.getInfo<CL_QUEUE_PROPERTIES>();
+    if (!(properties & CL_QUEUE_PROFILING_ENABLE) || (properties & CL_QUEUE_OUT_OF_ORDER_EXEC_MODE_ENABLE))
+      throw Error(ErrorCode::InvalidArgument,
+                  "the caller's OpenCL queue must be in order and have CL_QUEUE_PROFILING_ENABLE (stage times)");
+  } catch (const cl::Error& e) {
+    detail::rethrowClError(e, "using the caller's OpenCL device, context and queue");
+  }
+  impl_ = std::move(impl);
 }
 
 const DeviceInfo& Device::info() const { return impl_->info; }

@@ -6,7 +6,7 @@ namespace ssrcl::detail {
 
 void FilterStage::configure(Device::Impl& device, const TraceSettings& s) {
   enabled_ = s.denoise;
-  if (enabled_) kernel_ = cl::Kernel(device.program({"ssrcl_shared.h", "common.cl", "denoise.cl"}), "denoise");
+  if (enabled_) kernel_ = cl::Kernel(device.program({"ssrcl_shared.h", "common.cl", "filter.cl"}), "denoise");
 }
 
 void FilterStage::plan(DeviceBuffers& buffers, const FrameShape& frame) {

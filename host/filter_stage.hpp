@@ -1,5 +1,5 @@
 #pragma once
-// The optional edge-aware filter (kernels/denoise.cl) after the resolve, on the listed tiles.
+// The optional edge-aware filter (kernels/filter.cl) after the resolve, on the listed tiles.
 // With it on, the resolve writes to this stage's input buffers instead of the outputs.
 #include "setup_stage.hpp"
 

@@ -110,7 +110,7 @@ typedef struct {
   ssrcl_int reuse_radius;
 } ResolveParams;
 
-// kernels/denoise.cl
+// kernels/filter.cl
 typedef struct {
   ssrcl_int width, height;
   ssrcl_int tiles_x;

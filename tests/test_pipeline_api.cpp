@@ -7,6 +7,7 @@
 
 #include <cstring>
 
+#include "device_impl.hpp"
 #include "scenes/analytic_scene.hpp"
 #include "ssrcl/ssrcl.hpp"
 #include "support/test_device.hpp"
@@ -217,6 +218,31 @@ TEST(PipelineApi, MisuseIsInvalidOperation) {
   p.execute();
   p.setImage("depth", f.g.depth);  // an input changed since the commit
   expectInvalidOperation();
+}
+
+TEST(PipelineApi, CallersOpenClContextAndQueue) {
+  const Frame f = render(80, 48);
+  const cl::Device clDevice = ssrcl::detail::DeviceAccess::impl(device()).device;  // the same device
+  const cl::Context context(clDevice);
+  const cl::CommandQueue queue(context, clDevice, CL_QUEUE_PROFILING_ENABLE);
+  const ssrcl::Device shared(clDevice(), context(), queue());
+  EXPECT_EQ(shared.info().name, device().info().name);
+  ssrcl::Pipeline p(shared);
+  p.setGBuffer(f.g);
+  p.setCamera(f.camera);
+  p.settings() = glossy();
+  p.commit();
+  p.execute();
+  expectSame({p.output("reflection"), p.output("distance")}, reference(f, glossy()));
+
+  const cl::CommandQueue plain(context, clDevice);  // no profiling: no stage times
+  try {
+    ssrcl::Device unusable(clDevice(), context(), plain());
+    FAIL() << "no error";
+  } catch (const ssrcl::Error& e) {
+    EXPECT_EQ(e.code(), ssrcl::ErrorCode::InvalidArgument);
+    EXPECT_NE(std::string(e.what()).find("CL_QUEUE_PROFILING_ENABLE"), std::string::npos) << e.what();
+  }
 }
 
 TEST(Version, RuntimeMatchesTheHeaders) {

@@ -3,6 +3,11 @@
 #include <string>
 #include <vector>
 
+// OpenCL's handle types (cl_device_id is _cl_device_id*, ...), without the OpenCL headers.
+struct _cl_device_id;
+struct _cl_context;
+struct _cl_command_queue;
+
 namespace ssrcl {
 namespace detail {
 struct DeviceAccess;
@@ -31,6 +36,10 @@ class Device {
   explicit Device(DeviceType type = DeviceType::Default);
   // The device with a global index from list(); throws Error(NoDevice) when out of range.
   explicit Device(int index);
+  // The caller's OpenCL device, context and queue (retained while this Device lives), to share
+  // them with the caller's own work: pipelines enqueue on `queue`, which must be in order and
+  // created with CL_QUEUE_PROFILING_ENABLE (Error(InvalidArgument) otherwise). info().index is -1.
+  Device(_cl_device_id* device, _cl_context* context, _cl_command_queue* queue);
 
   const DeviceInfo& info() const;
 
