@@ -6,10 +6,16 @@
 #include <glm/gtc/matrix_inverse.hpp>
 
 #include "device_impl.hpp"
+#include "environment_fill.hpp"
+#include "kernel_args.hpp"
 #include "ssrcl/error.hpp"
 
 namespace ssrcl {
 namespace {
+
+using detail::roundUp;
+using detail::setArgs;
+using detail::toFloat16RowMajor;
 
 constexpr std::array<const char*, 6> kInputNames = {"color", "depth", "normal", "roughness", "base", "specular"};
 
@@ -25,13 +31,6 @@ struct HzbLevel {
   cl_int offset, width, height, pad;
 };
 
-cl_float16 toFloat16RowMajor(const glm::dmat4& m) {
-  cl_float16 out;
-  for (int r = 0; r < 4; ++r)
-    for (int c = 0; c < 4; ++c) out.s[r * 4 + c] = static_cast<float>(m[c][r]);  // glm is column-major
-  return out;
-}
-
 std::vector<HzbLevel> hzbLevels(int width, int height) {
   std::vector<HzbLevel> levels;
   int offset = 0, w = width, h = height;
@@ -44,15 +43,6 @@ std::vector<HzbLevel> hzbLevels(int width, int height) {
   }
   return levels;
 }
-
-// Sets every argument of a kernel in order.
-template <class... Args>
-void setArgs(cl::Kernel& kernel, const Args&... args) {
-  cl_uint index = 0;
-  (kernel.setArg(index++, args), ...);
-}
-
-size_t roundUp(size_t n, size_t multiple) { return (n + multiple - 1) / multiple * multiple; }
 
 double eventMs(const cl::Event& e) {
   auto start = e.getProfilingInfo<CL_PROFILING_COMMAND_START>();
@@ -86,6 +76,8 @@ struct Pipeline::Impl {
 
   Image reflection, distance;
   StageTimes times;
+  const EnvironmentMap* environment = nullptr;  // environment fill (host/environment_fill.cpp)
+  detail::EnvironmentFill environmentFill;
 
   explicit Impl(const Device& d) : device(d) {}
 
@@ -133,6 +125,12 @@ void Pipeline::setCamera(const Camera& camera) {
 
 TraceSettings& Pipeline::settings() { return impl_->settings; }
 
+void Pipeline::setEnvironment(const EnvironmentMap& environment) {
+  if (!environment.empty()) detail::EnvironmentFill::validate(environment);
+  impl_->environment = environment.empty() ? nullptr : &environment;
+  impl_->committed = false;
+}
+
 void Pipeline::Impl::validateSettings() const {
   const TraceSettings& s = settings;
   if (!(s.thicknessRelative > 0.0f) || !std::isfinite(s.thicknessRelative))
@@ -149,6 +147,10 @@ void Pipeline::Impl::validateSettings() const {
   if (!(s.maxRoughness >= 0.0f)) throw Error(ErrorCode::InvalidArgument, "parameter max-roughness must be >= 0");
   if (!(s.edgeFade >= 0.0f && s.edgeFade <= 0.5f))
     throw Error(ErrorCode::InvalidArgument, "parameter edge-fade must be in [0, 0.5]");
+  if (!(s.environmentIntensity >= 0.0f && s.environmentIntensity <= 1e6f))
+    throw Error(ErrorCode::InvalidArgument, "parameter environment-intensity must be in [0, 1e6]");
+  if (!std::isfinite(s.environmentRotation))
+    throw Error(ErrorCode::InvalidArgument, "parameter environment-rotation must be a finite number of degrees");
   if (std::isnan(s.constantRoughness)) throw Error(ErrorCode::InvalidArgument, "parameter roughness is NaN");
   if (s.samplesPerPixel < 1 || s.samplesPerPixel > 65536)
     throw Error(ErrorCode::InvalidArgument, "parameter spp must be in [1, 65536]");
@@ -259,9 +261,11 @@ void Pipeline::Impl::allocate() {
     fixedBytes += std::max<size_t>(b.bytes, 4);
     largest = std::max(largest, b.bytes);
   }
+  if (environment) fixedBytes += detail::EnvironmentFill::deviceBytes(*environment);
   detail::checkDeviceMemory(device.impl(), largest, fixedBytes + 2 * records,
                             "a " + std::to_string(width) + "x" + std::to_string(height) + " frame");
   for (const Planned& b : plan) *b.buffer = cl::Buffer(ctx, b.flags, std::max<size_t>(b.bytes, 4));
+  if (environment) environmentFill.upload(ctx, program, *environment);
   levelBuffer =
       cl::Buffer(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, levels.size() * sizeof(HzbLevel), levels.data());
   batchCapacity = 0;
@@ -434,6 +438,10 @@ void Pipeline::Impl::run() {
     }
   }
 
+  // Environment fill (host/environment_fill.cpp): the lobe the screen did not hold takes the environment.
+  cl::Event environmentEvent;
+  if (environment) environmentEvent = environmentFill.enqueue(q, size, camera.view, s, positions, normals, outRgba);
+
   std::vector<cl::Event> downloads(2);
   q.enqueueReadBuffer(outRgba, CL_FALSE, 0, pixels * sizeof(cl_float4), reflection.data.data(), nullptr, &downloads[0]);
   q.enqueueReadBuffer(outDistance, CL_FALSE, 0, pixels * sizeof(float), distance.data.data(), nullptr, &downloads[1]);
@@ -466,6 +474,7 @@ void Pipeline::Impl::run() {
   times.ms["trace"] = sum(traceEvents);
   times.ms["resolve"] = sum(resolveEvents);
   times.ms["denoise"] = s.denoise && tiles > 0 ? eventMs(denoiseEvent) : 0.0;
+  times.ms["environment"] = environment ? eventMs(environmentEvent) : 0.0;
   times.ms["download"] = sum(downloads);
 }
 
