@@ -6,6 +6,8 @@
 //
 //   ssrcl_score_corpus --corpus samples/corpus [--configs medium,high,...] [--scenes a,b] [--json out.json]
 //   ssrcl_score_corpus render.exr ... [--configs ...]   (renders of one's own, split "file")
+//   ssrcl_score_corpus --corpus samples/corpus/environment --environment samples/corpus/environment/sky.exr
+//       --configs "medium;medium:fill=0;eevee"   (environment fill: filled, premultiplied, EEVEE)
 //
 // A configuration is a preset name, optionally with settings after a colon:
 //   medium   high:spp=32   medium:thickness=0.01   medium:model=constant,thickness=0.005
@@ -13,7 +15,10 @@
 // hits (bounce, the default: hits on glossy pixels continue, with the render's glossy passes;
 // screen: they take the screen colour),
 // hitroughness, spp, reuse, denoise, prefilter, tracer, step, seed,
-// stride, iterations. "eevee" scores Blender EEVEE's own SSR (<scene>.eevee.exr) where it exists.
+// stride, iterations, form (incident, the default: our pass times E(F0 = 1) here; glossy-pass: the
+// pass `ssrcl trace --output-form glossy-pass` writes, compared with Cycles as it is, F0 from the
+// render's base_color / metallic AOVs where it has them, else 1 as the corpus's reflectors have).
+// "eevee" scores Blender EEVEE's own SSR (<scene>.eevee.exr) where it exists.
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <chrono>
@@ -39,6 +44,8 @@ struct Config {
   std::string label;
   bool eevee = false;
   bool glossyPasses = true;  // base and specular from the render's glossy passes, as `ssrcl trace` reads them
+  bool glossyPassForm = false;  // score the glossy-pass output form
+  bool fill = true;             // with --environment: misses take it (fill=0: the premultiplied pass)
   ssrcl::TraceSettings settings;
 };
 
@@ -97,6 +104,12 @@ Config parseConfig(const std::string& spec) {
       s.seed = std::stoul(value);
     } else if (key == "stride") {
       s.traceStride = std::stoi(value);
+    } else if (key == "form") {
+      if (value != "incident" && value != "glossy-pass")
+        throw std::runtime_error("configuration '" + spec + "': form is incident or glossy-pass");
+      c.glossyPassForm = value == "glossy-pass";
+    } else if (key == "fill") {
+      c.fill = value == "1";
     } else if (key == "iterations") {
       s.maxIterations = std::stoi(value);
     } else {
@@ -170,7 +183,7 @@ int main(int argc, char** argv) {
   CLI::App app{"Scores ssrcl configurations against Cycles over a corpus of scenes"};
   std::string corpus = std::string(SSRCL_SOURCE_DIR) + "/samples/corpus", jsonPath, plotPath;
   std::string configList = "draft,medium,high,reference,eevee", sceneList;
-  std::string dumpDir;
+  std::string dumpDir, environmentPath;
   std::vector<std::string> files;
   int repetitions = 1;
   app.add_option("files", files, "Renders to score instead of the corpus (Blender passes, IndexOB 1 = reflector)");
@@ -180,6 +193,8 @@ int main(int argc, char** argv) {
   app.add_option("--repetitions", repetitions, "Timed runs per configuration (the minimum is reported)");
   app.add_option("--json", jsonPath, "Write every figure as JSON");
   app.add_option("--plot", plotPath, "Write the corpus mean error against time as SVG");
+  app.add_option("--environment", environmentPath,
+                 "Environment fill from this equirect EXR (the scenes' HDRI; configs with fill=0 go without)");
   app.add_option("--dump", dumpDir, "Write <scene>.<config index>.ppm: ours, Cycles and |difference| side by side");
   CLI11_PARSE(app, argc, argv);
 
@@ -194,10 +209,29 @@ int main(int argc, char** argv) {
     if (scenes.empty()) throw std::runtime_error("no scenes selected");
 
     ssrcl::Device device(ssrcl::DeviceType::Default);
+    const ssrcl::EnvironmentMap environment =
+        environmentPath.empty() ? ssrcl::EnvironmentMap{} : ssrcl::loadEnvironmentMap(environmentPath);
     std::vector<std::vector<Score>> scores(configs.size(), std::vector<Score>(scenes.size()));
     for (size_t s = 0; s < scenes.size(); ++s) {
       const ssrcl::test::CyclesReference ref = ssrcl::test::loadCyclesReference(scenes[s].path);
       const auto& all = ref.groups.front().second;
+      // For the glossy-pass form: the render's material AOVs (samples/blender/
+      // make_tinted_glossy_scene.py), or the corpus's white metal, F0 = 1; and Cycles unscaled.
+      ssrcl::GBuffer withF0 = ref.gbuffer;
+      ssrcl::GBufferSource materialSource;
+      materialSource.file = scenes[s].path;
+      materialSource.baseColorChannels = "ViewLayer.base_color.R,ViewLayer.base_color.G,ViewLayer.base_color.B";
+      materialSource.metallicChannel = "ViewLayer.metallic.X";
+      try {
+        const ssrcl::GBuffer m = ssrcl::loadGBuffer(materialSource);
+        withF0.baseColor = m.baseColor;
+        withF0.metallic = m.metallic;
+      } catch (const ssrcl::Error&) {  // no material AOVs: the corpus's rule
+        withF0.f0 = ssrcl::Image(withF0.color.width, withF0.color.height, 3);
+        std::fill(withF0.f0.data.begin(), withF0.f0.data.end(), 1.0f);
+      }
+      ssrcl::test::CyclesReference unscaled = ref;
+      std::fill(unscaled.scale.begin(), unscaled.scale.end(), 1.0);
       ssrcl::Pipeline pipeline(device);
       pipeline.setGBuffer(ref.gbuffer);
       pipeline.setCamera(ref.camera);
@@ -215,6 +249,8 @@ int main(int argc, char** argv) {
         pipeline.setImage("base", configs[c].glossyPasses ? ref.gbuffer.base : none);
         pipeline.setImage("specular", configs[c].glossyPasses ? ref.gbuffer.specular : none);
         pipeline.settings() = configs[c].settings;
+        const ssrcl::EnvironmentMap noEnvironment;
+        pipeline.setEnvironment(configs[c].fill ? environment : noEnvironment);
         pipeline.commit();
         score.ms = INFINITY;
         for (int r = 0; r < std::max(1, repetitions); ++r) {
@@ -223,13 +259,17 @@ int main(int argc, char** argv) {
           for (const auto& [stage, t] : pipeline.stageTimes().ms) ms += t;
           score.ms = std::min(score.ms, ms);
         }
-        score.error = ssrcl::test::referenceError(ref, pipeline.output("reflection"), all);
+        ssrcl::Image pass = pipeline.output("reflection");
+        if (configs[c].glossyPassForm)
+          ssrcl::applyGlossyPassForm(pass, withF0, ref.camera, configs[c].settings.constantRoughness);
+        const ssrcl::test::CyclesReference& against = configs[c].glossyPassForm ? unscaled : ref;
+        score.error = ssrcl::test::referenceError(against, pass, all);
         score.present = true;
         if (!dumpDir.empty())
-          writeComparison(dumpDir + "/" + scenes[s].name + "." + std::to_string(c) + ".ppm", ref,
-                          pipeline.output("reflection"));
+          writeComparison(dumpDir + "/" + scenes[s].name + "." + std::to_string(c) + ".ppm", against, pass);
       }
-      std::cerr << "scored " << scenes[s].name << " (" << all.size() << " reflector pixels)\n";
+      std::cerr << "scored " << scenes[s].name << " (" << all.size() << " reflector pixels; glossy-pass F0 from "
+                << (withF0.f0.empty() ? "base_color + metallic AOVs" : "the corpus rule, 1") << ")\n";
     }
 
     // Table 1: PSNR per scene. Table 2: means per split, time, low-confidence share, p99.

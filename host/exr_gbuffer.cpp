@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "exr_header_camera.hpp"
+#include "exr_header_check.hpp"
 #include "ssrcl/error.hpp"
 #include "ssrcl/io.hpp"
 
@@ -67,6 +68,8 @@ void checkFrameSize(const std::string& path, int width, int height, std::size_t 
     throw Error(ErrorCode::OutOfMemory, path + text);
   }
 }
+
+}  // namespace
 
 // Checks an EXR header before OpenEXR reads it. OpenEXR (3.1) allocates what a header declares
 // before finding the file too short: a 2 KB file whose 'type' string attribute claims 1.8 GB
@@ -239,6 +242,8 @@ void checkHeaderSizes(const std::string& path) {
   }
 }
 
+namespace {
+
 struct ChannelRef {
   int part = -1;
   std::string name;  // the name inside that part
@@ -358,6 +363,16 @@ GBuffer loadGBuffer(const GBufferSource& source) {
   if (!source.constantRoughness)
     passes.push_back({"roughness", &gbuffer.roughness, 1, source.roughnessFile, source.roughnessChannel, "roughness.X",
                       "roughness"});
+
+  // Material passes for the glossy-pass output form: full names given, no defaults.
+  const std::pair<const char*, std::pair<Image*, const std::string*>> material[] = {
+      {"F0", {&gbuffer.f0, &source.f0Channels}},
+      {"base colour", {&gbuffer.baseColor, &source.baseColorChannels}},
+      {"metallic", {&gbuffer.metallic, &source.metallicChannel}}};
+  for (const auto& [label, pass] : material)
+    if (!pass.second->empty())
+      passes.push_back({label, pass.first, pass.first == &gbuffer.metallic ? 1 : 3, source.materialFile, *pass.second,
+                        "", ""});
 
   std::map<std::string, ExrFile> files;  // each file is opened once
 

@@ -78,6 +78,15 @@ Camera fromEyeToNdc(const glm::dmat4& eyeToNdc, const glm::dmat4& view, const Pi
   return camera;
 }
 
+// Arnold writes worldToNDC in its screen space instead: x, y in [-1, 1] over the display window,
+// y up (Arnold 4.2's files in github.com/zewt/exrflatten, sample/sample2.exr: world positions P
+// land on their pixels that way). Its files are told by their arnold/* attributes.
+bool writtenByArnold(const Imf::Header& header) {
+  for (auto a = header.begin(); a != header.end(); ++a)
+    if (std::string(a.name()).rfind("arnold/", 0) == 0) return true;
+  return false;
+}
+
 // OpenEXR's NDC: (0,0) top-left, (1,1) bottom-right of the display window, z discarded.
 std::optional<HeaderCamera> standardCamera(const Imf::Header& header, const glm::dmat4& view,
                                            const PixelBox& display, const std::string& path) {
@@ -86,10 +95,11 @@ std::optional<HeaderCamera> standardCamera(const Imf::Header& header, const glm:
   glm::dmat4 toUnit(1.0);  // from the file's projected space to our NDC, y up
   const Imath::M44f* projected = toNdc ? toNdc : toScreen;
   if (!projected) return std::nullopt;
-  if (toNdc) {
+  const bool arnold = toNdc && writtenByArnold(header);
+  if (toNdc && !arnold) {
     toUnit[0][0] = 2.0, toUnit[3][0] = -1.0;  // x' = 2x - w
     toUnit[1][1] = -2.0, toUnit[3][1] = 1.0;  // y' = w - 2y
-  } else {
+  } else if (!toNdc) {
     // RenderMan's screen space, y up, over its default screen window: the display window's
     // longer side spans [-1, 1] scaled by the frame aspect ratio.
     const double aspect = double(display.width()) / display.height();
@@ -99,7 +109,9 @@ std::optional<HeaderCamera> standardCamera(const Imf::Header& header, const glm:
   const std::string where = path + ": header attribute '" + (toNdc ? "worldToNDC" : "worldToScreen") + "'";
   HeaderCamera h;
   h.camera = fromEyeToNdc(toUnit * fromImath(*projected) * glm::inverse(view), view, display, where);
-  h.attributes = std::string("worldToCamera + ") + (toNdc ? "worldToNDC" : "worldToScreen");
+  h.attributes = std::string("worldToCamera + ") + (arnold ? "worldToNDC, Arnold's [-1, 1]"
+                                                     : toNdc ? "worldToNDC"
+                                                             : "worldToScreen");
   return h;
 }
 

@@ -3,6 +3,7 @@
 #include "ssrcl/pipeline.hpp"
 
 #include "color_pyramid_stage.hpp"
+#include "environment_stage.hpp"
 #include "filter_stage.hpp"
 #include "hzb_stage.hpp"
 #include "image_views.hpp"
@@ -26,6 +27,8 @@ struct Pipeline::Impl {
   bool hasCamera = false;
   TraceSettings settings;
   ProgressMonitor progress;
+  const EnvironmentMap* environment = nullptr;  // null: no environment fill
+  bool environmentChanged = false;
 
   // What the last commit planned: execute() replans when the settings differ.
   bool committed = false;  // false again after an input or the camera changes
@@ -43,6 +46,7 @@ struct Pipeline::Impl {
   TraceStage trace;
   ResolveStage resolve;
   FilterStage filter;
+  EnvironmentStage environmentFill;
   cl::Buffer outRgba, outDistance;
 
   Image reflection, distance;
@@ -65,7 +69,7 @@ void Pipeline::Impl::plan() {
   Device::Impl& d = DeviceAccess::impl(device);
   const int channels = inputs.view("color").channels;
   const bool base = inputs.has("base");
-  const bool reconfigure = !configured || settings != committedSettings || base != hasBase;
+  const bool reconfigure = !configured || settings != committedSettings || base != hasBase || environmentChanged;
   if (reconfigure) {
     setup.configure(d);
     thickness.configure(d, settings);
@@ -74,7 +78,9 @@ void Pipeline::Impl::plan() {
     trace.configure(d, settings, base);
     resolve.configure(d, settings);
     filter.configure(d, settings);
+    environmentFill.configure(d, settings, environment);
     configured = true;
+    environmentChanged = false;
   }
   const bool reshaped = frame.width != camera.width || frame.height != camera.height;
   frame = FrameShape(camera.width, camera.height);
@@ -89,6 +95,7 @@ void Pipeline::Impl::plan() {
   trace.plan(buffers, frame);
   resolve.plan(buffers, frame);
   filter.plan(buffers, frame);
+  environmentFill.plan(buffers, frame);
   buffers.add(outRgba, frame.pixels() * sizeof(cl_float4), CL_MEM_WRITE_ONLY);
   buffers.add(outDistance, frame.pixels() * sizeof(float), CL_MEM_WRITE_ONLY);
   const bool reallocated =
@@ -104,6 +111,7 @@ void Pipeline::Impl::plan() {
   resolve.bind(setup, trace, filter.enabled() ? filter.resolvedRgba : outRgba,
                filter.enabled() ? filter.resolvedDistance : outDistance);
   filter.bind(setup, outRgba, outDistance);
+  environmentFill.bind(d.queue, setup, outRgba);
   if (reflection.width != frame.width || reflection.height != frame.height) {
     reflection = Image(frame.width, frame.height, 4);
     distance = Image(frame.width, frame.height, 1);
@@ -157,6 +165,7 @@ void Pipeline::Impl::run() {
   }
   if (tiles > 0) resolve.finalize(q, resolveParams, tiles, events);
   filter.enqueue(q, s, tiles, events);
+  environmentFill.enqueue(q, camera.view, s, events);
   q.enqueueReadBuffer(outRgba, CL_FALSE, 0, frame.pixels() * sizeof(cl_float4), reflection.data.data(), nullptr,
                       newEvent(events, "download"));
   q.enqueueReadBuffer(outDistance, CL_FALSE, 0, frame.pixels() * sizeof(float), distance.data.data(), nullptr,
@@ -168,7 +177,8 @@ void Pipeline::Impl::run() {
   times.tracedPixels = counts.tracedPixels;
   times.resolvedTiles = tiles;
   times.ms.clear();
-  for (const char* stage : {"upload", "setup", "hzb", "color_mips", "thickness", "trace", "resolve", "denoise", "download"})
+  for (const char* stage :
+       {"upload", "setup", "hzb", "color_mips", "thickness", "trace", "resolve", "denoise", "environment", "download"})
     times.ms[stage] = 0.0;
   for (const auto& [stage, list] : events)
     for (const cl::Event& e : list) times.ms[stage] += eventMs(e);
@@ -220,6 +230,13 @@ void Pipeline::setCamera(const Camera& camera) {
 }
 
 TraceSettings& Pipeline::settings() { return impl_->settings; }
+
+void Pipeline::setEnvironment(const EnvironmentMap& environment) {
+  if (!environment.empty()) EnvironmentStage::validate(environment);
+  impl_->environment = environment.empty() ? nullptr : &environment;
+  impl_->environmentChanged = true;
+  impl_->committed = false;
+}
 
 void Pipeline::setProgressMonitor(ProgressMonitor monitor) { impl_->progress = std::move(monitor); }
 

@@ -21,7 +21,7 @@ auto fields(const TraceSettings& s) {
                   s.thicknessMaxRelative, s.maxIterations, s.maxRoughness, s.edgeFade, s.constantRoughness,
                   s.glossyHitRoughness, s.samplesPerPixel, s.fullRaysRoughness, s.seed, s.roughnessMapping,
                   s.mirrorRoughness, s.reuseRadius, s.prefilter, s.tracer, s.linearStepPixels, s.denoise,
-                  s.traceStride, s.countWork, s.classifyWork);
+                  s.traceStride, s.countWork, s.classifyWork, s.environmentRotation, s.environmentIntensity);
 }
 }  // namespace
 
@@ -42,6 +42,10 @@ void validateSettings(const TraceSettings& s) {
     throw Error(ErrorCode::InvalidArgument, "parameter max-roughness must be in [0, 1]");
   if (!(s.edgeFade >= 0.0f && s.edgeFade <= 0.5f))
     throw Error(ErrorCode::InvalidArgument, "parameter edge-fade must be in [0, 0.5]");
+  if (!(s.environmentIntensity >= 0.0f && s.environmentIntensity <= 1e6f))
+    throw Error(ErrorCode::InvalidArgument, "parameter environment-intensity must be in [0, 1e6]");
+  if (!std::isfinite(s.environmentRotation))
+    throw Error(ErrorCode::InvalidArgument, "parameter environment-rotation must be a finite number of degrees");
   if (std::isnan(s.constantRoughness)) throw Error(ErrorCode::InvalidArgument, "parameter roughness is NaN");
   if (s.samplesPerPixel < 1 || s.samplesPerPixel > 65536)
     throw Error(ErrorCode::InvalidArgument, "parameter spp must be in [1, 65536]");

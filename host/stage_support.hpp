@@ -12,6 +12,7 @@
 
 namespace ssrcl::detail {
 
+using shared::EnvironmentParams;
 using shared::FilterParams;
 using shared::HzbLevel;
 using shared::ResolveParams;

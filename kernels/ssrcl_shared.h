@@ -117,6 +117,14 @@ typedef struct {
   float mirror_roughness;
 } FilterParams;
 
+// kernels/environment.cl (roughness mapping is a program define)
+typedef struct {
+  float view_to_world[16];  // view-space directions into the environment's frame
+  ssrcl_int width, height;
+  ssrcl_int level_count;    // prefiltered levels, one per roughness step
+  float intensity;
+} EnvironmentParams;
+
 #ifndef __OPENCL_VERSION__
 }  // namespace ssrcl::shared
 #endif

@@ -6,6 +6,7 @@
 #include <OpenEXR/ImfFloatAttribute.h>
 #include <OpenEXR/ImfIntAttribute.h>
 #include <OpenEXR/ImfMatrixAttribute.h>
+#include <OpenEXR/ImfStringAttribute.h>
 
 #include <algorithm>
 #include <cmath>
@@ -14,6 +15,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <map>
 
+#include "exr_header_camera.hpp"
 #include "ssrcl/ssrcl.hpp"
 #include "support/exr_fixtures.hpp"
 #include "support/run_command.hpp"
@@ -116,18 +118,26 @@ Imath::M44f imath(const glm::dmat4& columnVectorMatrix) {
   return m;
 }
 
+// How a renderer lays out its projected header matrix: OpenEXR's worldToNDC, (0,0) top-left to
+// (1,1) bottom-right; worldToScreen in RenderMan's screen space; Arnold's worldToNDC, [-1, 1] y up
+// with arnold/* attributes beside it (as Arnold 4.2 writes it: see ArnoldFileHeaderCamera).
+enum class Projected { StandardNdc, Screen, ArnoldNdc };
+
 // OpenEXR's definitions, checked with Imath's own arithmetic on the sample's surface points:
 // worldToCamera gives +z forward camera space, worldToNDC (0,0) top-left to (1,1) bottom-right.
 // `display` is the display window in the sample's pixel coordinates, `c` its camera.
-void addStandardCamera(Imf::Header& header, const Sample& s, bool screen, const ssrcl::Camera& c,
+void addStandardCamera(Imf::Header& header, const Sample& s, Projected layout, const ssrcl::Camera& c,
                        const Imath::Box2i& display) {
+  const bool screen = layout == Projected::Screen;
   const glm::dmat4 flipZ = glm::scale(glm::dmat4(1.0), glm::dvec3(1, 1, -1));
   const glm::dmat4 toCamera = flipZ * c.view;
-  glm::dmat4 toUnit(1.0);  // clip to homogeneous NDC [0,1], y down; or RenderMan screen space
+  glm::dmat4 toUnit(1.0);  // clip to homogeneous NDC [0,1], y down; RenderMan screen space; Arnold's clip x, y
   if (screen) {
     toUnit[0][0] = double(c.width) / c.height;
-  } else {
+  } else if (layout == Projected::StandardNdc) {
     toUnit = glm::dmat4(0.5, 0, 0, 0, 0, -0.5, 0, 0, 0, 0, 1, 0, 0.5, 0.5, 0, 1);
+  } else {
+    header.insert("arnold/version", Imf::StringAttribute("Arnold 4.2.16.2"));
   }
   const Imath::M44f camera = imath(toCamera), projected = imath(toUnit * c.projection * c.view);
   for (int i = 0; i < s.w * s.h; i += 997) {
@@ -138,9 +148,13 @@ void addStandardCamera(Imf::Header& header, const Sample& s, bool screen, const 
     camera.multVecMatrix(Imath::V3f(float(world.x), float(world.y), float(world.z)), inCamera);
     projected.multVecMatrix(Imath::V3f(float(world.x), float(world.y), float(world.z)), n);
     EXPECT_NEAR(inCamera.z, -eye.z, 1e-3 * std::abs(eye.z));
-    if (!screen) {
+    if (layout == Projected::StandardNdc) {
       EXPECT_NEAR(n.x * c.width + display.min.x, i % s.w + 0.5, 1e-2);
       EXPECT_NEAR(n.y * c.height + display.min.y, i / s.w + 0.5, 1e-2);
+    }
+    if (layout == Projected::ArnoldNdc) {
+      EXPECT_NEAR((n.x + 1) / 2 * c.width + display.min.x, i % s.w + 0.5, 1e-2);
+      EXPECT_NEAR((1 - n.y) / 2 * c.height + display.min.y, i / s.w + 0.5, 1e-2);
     }
   }
   header.insert("worldToCamera", Imf::M44fAttribute(camera));
@@ -228,6 +242,19 @@ class Conventions : public testing::TestWithParam<const char*> {
     return path;
   }
 
+  // Arnold's channel names (R,G,B, Z, N.X,N.Y,N.Z) with `depth` as Z, world normals, and the
+  // sample's camera in the header in `layout`.
+  std::string arnoldNamedVariant(const std::string& tag, Projected layout, const std::vector<float>& depth) {
+    const Sample& s = sample();
+    ExrOptions options;
+    options.editHeader = [&](Imf::Header& h) {
+      addStandardCamera(h, s, layout, s.camera, Imath::Box2i({0, 0}, {s.w - 1, s.h - 1}));
+    };
+    return variant(tag,
+                   baseChannels(s, "", "roughness") + std::vector<ExrChannel>{{"Z", depth}} + worldNormals(s, "N."),
+                   options);
+  }
+
   // Traces `input` with `options` and compares with the original's pass on its pixels.
   void expectSameAsOriginal(const std::string& input, const std::string& options,
                             const Imath::Box2i* display = nullptr) {
@@ -312,35 +339,38 @@ TEST_P(Conventions, PositionsCheckedAgainstDepth) {
                 "position pass disagrees with the depth pass", "--position");
 }
 
-// RenderMan's conventions: planar z, camera-space Nn (+z forward), worldToCamera + worldToNDC.
+// RenderMan's conventions: planar Z (its OpenEXR driver names output variable z "Z"), camera-space Nn
+// (+z forward), worldToCamera + worldToNDC.
 TEST_P(Conventions, RenderManPresetWithHeaderCamera) {
   const Sample& s = sample();
   ExrOptions options;
   options.editHeader = [&](Imf::Header& h) {
-    addStandardCamera(h, s, false, s.camera, Imath::Box2i({0, 0}, {s.w - 1, s.h - 1}));
+    addStandardCamera(h, s, Projected::StandardNdc, s.camera, Imath::Box2i({0, 0}, {s.w - 1, s.h - 1}));
   };
   const std::string in = variant("renderman",
                                  baseChannels(s, "", "roughness") +
-                                     std::vector<ExrChannel>{{"z", s.channel(s.g.depth, 0)}} +
+                                     std::vector<ExrChannel>{{"Z", s.channel(s.g.depth, 0)}} +
                                      cameraNormals(s, "Nn.", "xyz", true),
                                  options);
   expectSameAsOriginal(in, "--renderer renderman");
   expectRefused(in, "--renderer renderman --normal-space world", "normal pass", "--normal-space camera");
 }
 
-// Arnold's: radial Z, world N, worldToCamera + worldToScreen.
-TEST_P(Conventions, ArnoldPresetWithScreenMatrix) {
+// Arnold's, as its files hold them (ArnoldFileHeaderCamera): planar Z, world N, worldToCamera +
+// worldToNDC in its [-1, 1] layout. The preset read Z as radial until Arnold's own files showed
+// otherwise: that reading is refused.
+TEST_P(Conventions, ArnoldPresetWithArnoldHeader) {
   const Sample& s = sample();
-  ExrOptions options;
-  options.editHeader = [&](Imf::Header& h) {
-    addStandardCamera(h, s, true, s.camera, Imath::Box2i({0, 0}, {s.w - 1, s.h - 1}));
-  };
-  const std::string in = variant("arnold",
-                                 baseChannels(s, "", "roughness") +
-                                     std::vector<ExrChannel>{{"Z", radialDepth(s)}} + worldNormals(s, "N."),
-                                 options);
+  const std::string in = arnoldNamedVariant("arnold", Projected::ArnoldNdc, s.channel(s.g.depth, 0));
   expectSameAsOriginal(in, "--renderer arnold");
-  expectRefused(in, "--renderer arnold --depth-kind planar", "depth pass", "--depth-kind radial");
+  expectRefused(in, "--renderer arnold --depth-kind radial", "depth pass", "--depth-kind planar");
+}
+
+// Radial depth with worldToCamera + worldToScreen (read in RenderMan's screen space).
+TEST_P(Conventions, RadialDepthWithScreenMatrix) {
+  const std::string in = arnoldNamedVariant("screen", Projected::Screen, radialDepth(sample()));
+  expectSameAsOriginal(in, "--renderer arnold --depth-kind radial");
+  expectRefused(in, "--renderer arnold", "depth pass", "--depth-kind radial");
 }
 
 // V-Ray's: planar Z, camera-space normals (-z forward), cameraTransform + cameraFov.
@@ -387,9 +417,9 @@ TEST_P(Conventions, BatchOverscanWithHeaderCamera) {
   const ssrcl::Camera camera = cameraForWindow(s, display.min.x, display.min.y, display.max.x, display.max.y);
   ExrOptions options;
   options.displayWindow = display;
-  options.editHeader = [&](Imf::Header& h) { addStandardCamera(h, s, false, camera, display); };
+  options.editHeader = [&](Imf::Header& h) { addStandardCamera(h, s, Projected::StandardNdc, camera, display); };
   const std::string in = variant("batch", baseChannels(s, "", "roughness") +
-                                              std::vector<ExrChannel>{{"z", s.channel(s.g.depth, 0)}} +
+                                              std::vector<ExrChannel>{{"Z", s.channel(s.g.depth, 0)}} +
                                               cameraNormals(s, "Nn.", "xyz", true),
                                  options);
   const std::string outDir = dir->file(s.name + ".batch.out");
@@ -513,6 +543,54 @@ TEST(ConventionCheck, CorpusScenes) {
     RecordProperty(name, figures);
   }
   if (scenes == 0) GTEST_SKIP() << "no corpus scenes in " << corpus;
+}
+
+// A header exactly as Arnold 4.2 (MtoA) wrote it: github.com/zewt/exrflatten, sample/sample2.exr
+// (deep scan lines, 500x500, channels R G B A Z ZBack N.X N.Y N.Z P.X P.Y P.Z id; matrices and
+// samples below copied from the file). Its Z is planar depth (within 1.4e-4 of the camera-space z
+// of its world positions P over 455 sampled pixels; radial distance is 2.1% off) and its
+// worldToNDC puts P on its pixel in [-1, 1], y up: the camera we read must do the same.
+TEST(ArnoldFileHeaderCamera, PutsThePositionsOnTheirPixels) {
+  Imf::Header header(500, 500);
+  header.insert("arnold/version", Imf::StringAttribute("Arnold 4.2.16.2 windows icc-14.0.2 oiio-1.7.7 rlm-12.0.2"));
+  header.insert("worldToCamera", Imf::M44fAttribute(Imath::M44f(-0.998239875f, -0.00345354597f, -0.0592057407f, 0,  //
+                                                                0, 0.998303115f, -0.0582322925f, 0,                  //
+                                                                -0.0593063794f, 0.0581297912f, 0.99654597f, 0,      //
+                                                                -1.39829028f, -4.14148045f, 15.7246094f, 1)));
+  header.insert("worldToNDC", Imf::M44fAttribute(Imath::M44f(-1.94102204f, -0.00671522878f, -0.059206333f, -0.0592057407f,
+                                                             0, 1.94114506f, -0.0582328774f, -0.0582322925f,  //
+                                                             -0.115317963f, 0.113030158f, 0.996555924f, 0.99654597f,
+                                                             -2.71889782f, -8.05287933f, 14.7247562f, 15.7246094f)));
+  struct Sampled {
+    glm::dvec3 p;  // P (stored as half)
+    int x, y;      // its pixel
+    double z;      // Z
+  };
+  const Sampled samples[] = {{{1.626953, 6.492188, -5.800781}, 112, 147, 9.469747},
+                             {{-1.246094, 5.835938, -0.2224121}, 245, 196, 15.23683},
+                             {{-1.359375, 4.996094, -6.097656}, 266, 224, 9.43747},
+                             {{0.7294922, 3.873047, 3.142578}, 189, 252, 18.58721},
+                             {{-2.449219, 4.371094, -9.265625}, 371, 273, 6.382986}};
+  const std::optional<ssrcl::HeaderCamera> read = ssrcl::detail::cameraFromHeader(header, "sample2.exr");
+  ASSERT_TRUE(read && read->problem.empty()) << (read ? read->problem : "no camera");
+  for (const Sampled& sample : samples) {
+    const glm::dvec3 eye = glm::dvec3(read->camera.view * glm::dvec4(sample.p, 1.0));
+    const glm::dvec3 screen = ssrcl::cameraToScreen(read->camera, eye);
+    // P is stored as half: a few thousandths of a unit, a few tenths of a pixel at this distance.
+    EXPECT_NEAR(screen.x, sample.x + 0.5, 0.3) << sample.x << "," << sample.y;
+    EXPECT_NEAR(screen.y, sample.y + 0.5, 0.3) << sample.x << "," << sample.y;
+    EXPECT_NEAR(screen.z, sample.z, 2e-3 * sample.z) << "planar depth";
+  }
+
+  // Read as OpenEXR's [0, 1] NDC (no arnold/* attribute), the same matrices put them far away.
+  Imf::Header plain(500, 500);
+  plain.insert("worldToCamera", header["worldToCamera"]);
+  plain.insert("worldToNDC", header["worldToNDC"]);
+  const std::optional<ssrcl::HeaderCamera> misread = ssrcl::detail::cameraFromHeader(plain, "plain.exr");
+  ASSERT_TRUE(misread && misread->problem.empty());
+  const glm::dvec3 off =
+      ssrcl::cameraToScreen(misread->camera, glm::dvec3(misread->camera.view * glm::dvec4(samples[0].p, 1.0)));
+  EXPECT_GT(std::abs(off.x - (samples[0].x + 0.5)), 50.0);
 }
 
 }  // namespace

@@ -57,7 +57,8 @@ int runBatch(const BatchOptions& o) {
     else
       toRun.push_back(&jobs[i]);
   }
-  OutputRecord record{o.settings.quality, o.in.applyTo(o.settings.resolve()), ""};
+  OutputRecord record{o.settings.quality, o.in.applyTo(o.settings.resolve()), "", o.in.form.form,
+                      o.settings.environment};
   for (size_t i = 0; i < jobs.size() && !o.dryRun; ++i)
     if (outcomes[i].status == FrameStatus::Skipped)
       if (const std::string problem = resumeMismatch(jobs[i].output, jobs[i].input, o.out, record); !problem.empty())
@@ -81,7 +82,9 @@ int runBatch(const BatchOptions& o) {
     Device device = openDevice(o.device);
     deviceName = device.info().name;
     record.device = deviceName;
+    const EnvironmentMap environment = o.settings.loadEnvironment();  // loaded and prefiltered once
     BatchRunner runner(device, o.in, record, o.out, o.failFast, o.ioThreads);
+    runner.setEnvironment(environment);
     removeStaleTemporaries(toRun);
     ProgressLine progress(toRun.size(), !o.quiet);
     size_t finished = 0, failed = 0;
@@ -138,6 +141,7 @@ Action addBatchCommand(CLI::App& app) {
   addChannelOptions(*cmd, o->in);
   addSettingsOptions(*cmd, o->settings);
   addOutputOptions(*cmd, o->out);
+  addOutputFormOptions(*cmd, o->in.form);
   return [o] { return runBatch(*o); };
 }
 

@@ -121,6 +121,7 @@ BatchRun BatchRunner::run(const std::vector<FrameJob>& jobs, std::vector<FrameOu
           const std::filesystem::path parent = std::filesystem::path(jobs[f->index].output).parent_path();
           if (!parent.empty()) std::filesystem::create_directories(parent);
           const FrameJob& job = jobs[f->index];
+          toOutputForm(input_.form, f->reflection, f->frame.gbuffer, f->frame.camera, input_.roughness);
           writeReflectionExr(job.output, f->reflection, f->distance,
                              writerOptions(output_, record_, job.input, input_.sourceFor(job.input), f->frame));
         });

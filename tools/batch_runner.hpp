@@ -41,6 +41,9 @@ class BatchRunner {
   BatchRunner(const Device& device, const GBufferInputOptions& input, const OutputRecord& record,
               const OutputOptions& output, bool failFast, int ioThreads);
 
+  // Every frame's misses take this environment (see Pipeline::setEnvironment); it must outlive run().
+  void setEnvironment(const EnvironmentMap& environment) { pipeline_.setEnvironment(environment); }
+
   // Processes, in order, the jobs whose outcome is NotRun and records their outcomes. Starts no
   // new frame once stopRequested() is true; the frame on the device is finished and written.
   // frameFinished(i) is called once per frame done or failed, never two at a time.

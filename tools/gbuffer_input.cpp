@@ -28,6 +28,7 @@ GBufferSource GBufferInputOptions::sourceFor(const std::string& file) const {
                   : normalSpace == "camera"    ? NormalSpace::Camera
                   : normalSpace == "camera-gl" ? NormalSpace::CameraGL
                                                : NormalSpace::World;
+  form.nameMaterialPasses(s);
   return s;
 }
 

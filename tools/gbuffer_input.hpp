@@ -2,6 +2,7 @@
 #include <CLI/CLI.hpp>
 #include <string>
 
+#include "output_form_options.hpp"
 #include "ssrcl/io.hpp"
 #include "ssrcl/pipeline.hpp"
 
@@ -16,6 +17,7 @@ struct GBufferInputOptions {
   std::string renderer = "blender";
   std::string depthKind, normalSpace;  // empty: the renderer's
   bool inputCheck = true;
+  OutputFormOptions form;  // names the material passes its glossy-pass form reads
   // The options a preset must not override once given (set by addChannelOptions).
   CLI::Option *layerOption = nullptr, *colorOption = nullptr, *depthOption = nullptr, *normalOption = nullptr;
 

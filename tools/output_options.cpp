@@ -46,9 +46,17 @@ ReflectionExrOptions writerOptions(const OutputOptions& o, const OutputRecord& r
       {"position", &source.positionFile}};
   for (const auto& [pass, file] : passFiles)
     if (!file->empty()) inputs[pass] = *file;
+  const std::pair<const char*, const std::string*> material[] = {{"f0_channels", &source.f0Channels},
+                                                                 {"base_color_channels", &source.baseColorChannels},
+                                                                 {"metallic_channel", &source.metallicChannel},
+                                                                 {"material", &source.materialFile}};
+  for (const auto& [what, value] : material)
+    if (!value->empty()) inputs[what] = *value;
   inputs["camera"] = frame.cameraSource;
+  if (!record.environment.empty()) inputs["environment"] = record.environment;
   w.attributes = {{"ssrcl/version", SSRCL_VERSION},
                   {"ssrcl/preset", record.preset},
+                  {"ssrcl/output_form", record.outputForm},
                   {"ssrcl/settings", settingsJson(record.settings).dump()},
                   {"ssrcl/seed", std::to_string(record.settings.seed)},
                   {"ssrcl/inputs", inputs.dump()},

@@ -27,6 +27,8 @@ struct OutputRecord {
   std::string preset;  // --quality
   TraceSettings settings;
   std::string device;
+  std::string outputForm = "incident";  // --output-form
+  std::string environment;              // --environment file, "" without
 };
 
 // The writer's options for one frame traced from `input` (the G-buffer file: appended to with

@@ -10,8 +10,8 @@ namespace {
 const std::vector<RendererPreset>& presets() {
   static const std::vector<RendererPreset> all = {
       {"blender", "ViewLayer", "", "", "", DepthKind::Planar, NormalSpace::World},
-      {"arnold", "", "R,G,B", "Z", "N.X,N.Y,N.Z", DepthKind::Radial, NormalSpace::World},
-      {"renderman", "", "R,G,B", "z", "Nn.x,Nn.y,Nn.z", DepthKind::Planar, NormalSpace::Camera},
+      {"arnold", "", "R,G,B", "Z", "N.X,N.Y,N.Z", DepthKind::Planar, NormalSpace::World},
+      {"renderman", "", "R,G,B", "Z", "Nn.x,Nn.y,Nn.z", DepthKind::Planar, NormalSpace::Camera},
       {"karma", "", "R,G,B", "depth", "N.x,N.y,N.z", DepthKind::Planar, NormalSpace::World},
       {"vray", "", "R,G,B", "Z", "normals.R,normals.G,normals.B", DepthKind::Planar, NormalSpace::CameraGL},
   };

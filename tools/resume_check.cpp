@@ -28,6 +28,9 @@ std::string resumeMismatch(const std::string& output, const std::string& input, 
     return output + ": exists without ssrcl's record of how it was made (written by an older ssrcl or "
                     "another tool), so resuming cannot tell whether it matches; give --overwrite to recompute it";
   if (*preset != asked.preset) return differs(output, "preset", *preset, asked.preset);
+  const std::string* form = attribute("ssrcl/output_form");  // absent before output forms: incident
+  const std::string recordedForm = form ? *form : "incident";
+  if (recordedForm != asked.outputForm) return differs(output, "output form", recordedForm, asked.outputForm);
 
   const nlohmann::ordered_json recorded = nlohmann::ordered_json::parse(*settings, nullptr, false);
   if (recorded.is_discarded() || !recorded.is_object())

@@ -46,6 +46,8 @@ nlohmann::ordered_json settingsJson(const TraceSettings& s) {
   j["traceStride"] = s.traceStride;
   j["countWork"] = s.countWork;
   j["classifyWork"] = s.classifyWork;
+  j["environmentRotation"] = decimal(s.environmentRotation);
+  j["environmentIntensity"] = decimal(s.environmentIntensity);
   return j;
 }
 

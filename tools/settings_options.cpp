@@ -27,8 +27,14 @@ TraceSettings SettingsOptions::resolve() const {
   if (tracer) selectTracer(s, *tracer);
   apply(s.maxIterations, maxIterations);
   apply(s.traceStride, traceStride);
+  apply(s.environmentRotation, environmentRotation);
+  apply(s.environmentIntensity, environmentIntensity);
   validateSettings(s);  // the library's ranges: a bad value fails before any frame is traced
   return s;
+}
+
+EnvironmentMap SettingsOptions::loadEnvironment() const {
+  return environment.empty() ? EnvironmentMap{} : loadEnvironmentMap(environment);
 }
 
 void selectTracer(TraceSettings& s, const std::string& name) {
@@ -93,6 +99,20 @@ void addSettingsOptions(CLI::App& cmd, SettingsOptions& o) {
       ->excludes(model);
   cmd.add_option("--edge-fade", o.edgeFade, "Fraction of the screen over which A fades at its edges (default 0.05)")
       ->group(m);
+
+  const char* e = "Environment";
+  auto* env = cmd.add_option("--environment", o.environment,
+                             "Equirectangular HDR EXR (Blender's world mapping): the part of each lobe not found "
+                             "on screen (1 - A) takes its radiance, so RGB is the complete reflection")
+                  ->group(e);
+  cmd.add_option("--environment-rotation", o.environmentRotation,
+                 "Degrees the environment turns about world +Z (Blender: a Mapping node's Rotation Z)")
+      ->group(e)
+      ->needs(env);
+  cmd.add_option("--environment-intensity", o.environmentIntensity,
+                 "Factor on the environment's radiance (Blender: the Background's Strength)")
+      ->group(e)
+      ->needs(env);
 }
 
 }  // namespace ssrcl::cli

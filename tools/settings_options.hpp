@@ -16,8 +16,12 @@ struct SettingsOptions {
   std::optional<uint32_t> seed;
   std::optional<std::string> roughnessMapping, tracer, thicknessModel;
   std::optional<bool> prefilter, denoise;
+  std::string environment;  // --environment FILE.exr: misses take this HDR's radiance
+  std::optional<float> environmentRotation, environmentIntensity;
 
   TraceSettings resolve() const;
+  // The --environment map, prefiltered; empty without the option. Throws Error naming the file.
+  EnvironmentMap loadEnvironment() const;
 };
 
 void addSettingsOptions(CLI::App& cmd, SettingsOptions& o);

@@ -37,20 +37,26 @@ int runTrace(TraceOptions& o) {
     return kExitOutput;
   }
 
+  const EnvironmentMap environment = o.settings.loadEnvironment();  // a bad file fails before any tracing
   const Frame frame = loadFrame(o.in, o.input, cameraPath, o.camera.empty());
   const Camera& camera = frame.camera;
 
   Device device = openDevice(o.device);
   Pipeline pipeline(device);
   setFrame(pipeline, frame);
+  pipeline.setEnvironment(environment);
   pipeline.settings() = o.in.applyTo(o.settings.resolve());
   pipeline.commit();
   pipeline.execute();
 
-  const OutputRecord record{o.settings.quality, pipeline.settings(), device.info().name};
+  Image reflection = pipeline.output("reflection");
+  toOutputForm(o.in.form, reflection, frame.gbuffer, camera, o.in.roughness);
+
+  const OutputRecord record{o.settings.quality, pipeline.settings(), device.info().name, o.in.form.form,
+                            o.settings.environment};
   const ReflectionExrOptions written = writerOptions(o.out, record, mainFile, o.in.sourceFor(o.input), frame);
   try {
-    writeReflectionExr(o.output, pipeline.output("reflection"), pipeline.output("distance"), written);
+    writeReflectionExr(o.output, reflection, pipeline.output("distance"), written);
   } catch (const Error& e) {
     if (e.code() != ErrorCode::IoError) throw;  // a file that cannot be appended to is bad input
     std::cerr << "ssrcl: " << e.what() << "\n";
@@ -82,6 +88,7 @@ Action addTraceCommand(CLI::App& app) {
   addPassFileOptions(*cmd, o->in);
   addSettingsOptions(*cmd, o->settings);
   addOutputOptions(*cmd, o->out);
+  addOutputFormOptions(*cmd, o->in.form);
   cmd->add_flag("--stats", o->stats, "Print per-stage device times (OpenCL profiling) to stderr");
   return [o] { return runTrace(*o); };
 }

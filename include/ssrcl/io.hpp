@@ -50,6 +50,12 @@ struct GBufferSource {
   // R,G,B each), GBuffer::base and GBuffer::specular are made from them, for hits on glossy
   // surfaces: base = color - GlossCol * (GlossDir + GlossInd), specular = GlossCol.
   bool glossyPasses = true;
+
+  // For the glossy-pass output form (glossy_pass_form.hpp), read only when named: the specular
+  // colour at normal incidence (3 channels), or Principled base colour (3) and metallic (1).
+  // Full channel names, comma-separated; `materialFile` empty reads them from `file`.
+  std::string f0Channels, baseColorChannels, metallicChannel;
+  std::string materialFile;
 };
 
 // The camera an EXR header describes, for its display window: OpenEXR's standard worldToCamera
@@ -76,6 +82,7 @@ struct GBuffer {
   // the specular reflection, and the specular colour, 3 channels each.
   Image base, specular;
   Image position;   // 3 channels, world space; only when positionChannels was given
+  Image f0, baseColor, metallic;  // as read, where GBufferSource names them (3, 3, 1 channels)
   // The EXR windows of the depth (or position) pass's file: the images cover the data window;
   // a camera describes the display window.
   PixelBox dataWindow, displayWindow;

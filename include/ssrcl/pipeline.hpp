@@ -8,6 +8,7 @@
 
 #include "ssrcl/camera.hpp"
 #include "ssrcl/device.hpp"
+#include "ssrcl/environment.hpp"
 #include "ssrcl/image.hpp"
 #include "ssrcl/io.hpp"
 
@@ -91,6 +92,12 @@ struct TraceSettings {
   // hold one: sky and pixels above maxRoughness cost nothing past setup. false dispatches every
   // pixel and tile (the others exit at once), the same output: the baseline for benchmarks.
   bool classifyWork = true;
+
+  // With an environment set (Pipeline::setEnvironment): degrees the environment turns about world
+  // +Z (a Mapping node's Rotation Z in front of Blender's Environment Texture), and the factor its
+  // radiance is scaled by (the world Background's Strength).
+  float environmentRotation = 0.0f;
+  float environmentIntensity = 1.0f;
 };
 // Throws Error(InvalidArgument) naming the first parameter out of its range (commit() does too).
 void validateSettings(const TraceSettings& settings);
@@ -110,7 +117,7 @@ TraceSettings qualityPreset(const std::string& name);
 
 // Per-stage device time of the last execute(), from OpenCL profiling events (milliseconds).
 struct StageTimes {
-  // "upload", "setup", "hzb", "color_mips", "trace", "resolve", "download"
+  // "upload", "setup", "hzb", "color_mips", "trace", "resolve", "environment", "download"
   std::map<std::string, double> ms;
   long long tracedPixels = 0;   // pixels that got rays (not sky, not above max roughness)
   long long tracedRays = 0;     // rays: one per mirror-like pixel, samplesPerPixel (or fewer) per glossy one
@@ -156,6 +163,12 @@ class Pipeline {
   void setGBuffer(const GBuffer& gbuffer);
   void setCamera(const Camera& camera);
   TraceSettings& settings();
+  // Environment fill: the part of each pixel's lobe not found on screen (1 - A, the edge fade
+  // included) takes the environment's radiance filtered for the lobe, so "reflection" RGB is
+  // the complete reflection; A still reports the screen-space fraction. Every pixel with a surface
+  // facing the camera is filled, those above maxRoughness (A = 0) included. An empty map turns it
+  // off. The map must stay alive until execute().
+  void setEnvironment(const EnvironmentMap& environment);
 
   // Called during execute() with the fraction done (0..1); returning false cancels it: execute()
   // then throws Error(Cancelled) and the outputs keep their previous content.

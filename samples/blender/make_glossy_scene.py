@@ -68,32 +68,12 @@ def make_emission_material(name, color, strength):
     return mat
 
 
-def make_floor_material(scene):
-    """F0 = 1 single-scatter GGX metal whose roughness is picked per stripe.
-
-    A floor point p = (x, y, 0) lies in the image at NDC x = clip_x / clip_w with
-    clip = P V p; the stripe edges are the floor lines where that equals the NDC of image
-    columns 160 and 320. The shader evaluates clip_x and clip_w as dot products of the object
-    position (the floor's object space is world space) with rows of P V, so the stripes are
-    fixed on the floor (camera-independent at render time) yet line up with those columns.
-    roughness = i0 r0 + i1 r1 + i2 r2 with 0/1 indicators i_k, which is exact in float.
-    """
+def image_ndc_x(scene, nodes, links):
+    """A shader socket holding the image NDC x of the shaded point of a world-space object:
+    clip_x / clip_w, dot products of the object position with rows of the camera's P V."""
     cam = export_camera.camera_dict(scene)
     view, proj = cam["view"], cam["projection"]
     clip = [[sum(proj[r][k] * view[k][c] for k in range(4)) for c in range(4)] for r in range(4)]
-    edges_ndc = [2.0 * col / WIDTH - 1.0 for col in STRIPE_EDGE_COLUMNS]
-
-    mat = bpy.data.materials.new("GlossyFloor")
-    mat.use_nodes = True
-    nodes, links = mat.node_tree.nodes, mat.node_tree.links
-    bsdf = nodes["Principled BSDF"]
-    bsdf.distribution = 'GGX'  # single-scatter GGX (not 'MULTI_GGX')
-    bsdf.inputs["Base Color"].default_value = (1.0, 1.0, 1.0, 1.0)  # F0 = 1: no Fresnel
-    bsdf.inputs["Metallic"].default_value = 1.0
-    for name in ("Specular", "Specular Tint", "Anisotropic", "Sheen", "Clearcoat",
-                 "Subsurface", "Transmission"):
-        bsdf.inputs[name].default_value = 0.0
-
     coords = nodes.new("ShaderNodeTexCoord")
 
     def row_dot(row):
@@ -107,6 +87,36 @@ def make_floor_material(scene):
         add.inputs[1].default_value = row[3]
         return add.outputs[0]
 
+    ndc_x = nodes.new("ShaderNodeMath")
+    ndc_x.operation = 'DIVIDE'
+    links.new(row_dot(clip[0]), ndc_x.inputs[0])
+    links.new(row_dot(clip[3]), ndc_x.inputs[1])
+    return ndc_x.outputs[0]
+
+
+def make_floor_material(scene):
+    """F0 = 1 single-scatter GGX metal whose roughness is picked per stripe.
+
+    A floor point p = (x, y, 0) lies in the image at NDC x = clip_x / clip_w with
+    clip = P V p; the stripe edges are the floor lines where that equals the NDC of image
+    columns 160 and 320. The shader evaluates clip_x and clip_w as dot products of the object
+    position (the floor's object space is world space) with rows of P V, so the stripes are
+    fixed on the floor (camera-independent at render time) yet line up with those columns.
+    roughness = i0 r0 + i1 r1 + i2 r2 with 0/1 indicators i_k, which is exact in float.
+    """
+    edges_ndc = [2.0 * col / WIDTH - 1.0 for col in STRIPE_EDGE_COLUMNS]
+
+    mat = bpy.data.materials.new("GlossyFloor")
+    mat.use_nodes = True
+    nodes, links = mat.node_tree.nodes, mat.node_tree.links
+    bsdf = nodes["Principled BSDF"]
+    bsdf.distribution = 'GGX'  # single-scatter GGX (not 'MULTI_GGX')
+    bsdf.inputs["Base Color"].default_value = (1.0, 1.0, 1.0, 1.0)  # F0 = 1: no Fresnel
+    bsdf.inputs["Metallic"].default_value = 1.0
+    for name in ("Specular", "Specular Tint", "Anisotropic", "Sheen", "Clearcoat",
+                 "Subsurface", "Transmission"):
+        bsdf.inputs[name].default_value = 0.0
+
     def math(op, a, b):
         node = nodes.new("ShaderNodeMath")
         node.operation = op
@@ -117,7 +127,7 @@ def make_floor_material(scene):
                 links.new(v, node.inputs[i])
         return node.outputs[0]
 
-    ndc_x = math('DIVIDE', row_dot(clip[0]), row_dot(clip[3]))
+    ndc_x = image_ndc_x(scene, nodes, links)
     left = math('LESS_THAN', ndc_x, edges_ndc[0])      # 1 in the left stripe, else 0
     right = math('GREATER_THAN', ndc_x, edges_ndc[1])  # 1 in the right stripe, else 0
     middle = math('SUBTRACT', math('SUBTRACT', 1.0, left), right)

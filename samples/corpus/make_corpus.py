@@ -676,9 +676,9 @@ def configure_corpus_render(scene, samples):
     layer.use_pass_object_index = True
 
 
-def write_manifest(outdir):
+def write_manifest(outdir, scenes=None):
     entries = [{k: s[k] for k in ("name", "split", "units", "description", "samples")}
-               for s in SCENES]
+               for s in (scenes or SCENES)]
     with open(os.path.join(outdir, "corpus.json"), "w") as f:
         json.dump({"scenes": entries}, f, indent=2)
         f.write("\n")

@@ -23,6 +23,7 @@ import bpy
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import make_corpus  # noqa: E402  (also puts samples/blender on sys.path)
+import make_env_corpus  # noqa: E402
 from scene_common import HEIGHT, WIDTH, reset_scene  # noqa: E402
 
 
@@ -47,7 +48,12 @@ def black_world_for_glossy(scene):
     links.new(mix.outputs["Shader"], surface)
 
 
-def configure_eevee(scene):
+# Environment-fill scenes (make_env_corpus.py) keep their world for glossy rays: EEVEE's world
+# probe filling what SSR misses is the peer of `ssrcl --environment`.
+SCENE_BY_NAME = {**make_corpus.SCENE_BY_NAME, **make_env_corpus.SCENE_BY_NAME}
+
+
+def configure_eevee(scene, world_probe=False):
     scene.render.engine = 'BLENDER_EEVEE'
     ee = scene.eevee
     ee.use_ssr = not os.environ.get("SSRCL_EEVEE_NO_SSR")  # check: without SSR the pass is 0
@@ -59,7 +65,8 @@ def configure_eevee(scene):
     ee.taa_render_samples = int(os.environ.get("SSRCL_EEVEE_SAMPLES", 16))
     for light in bpy.data.lights:
         light.specular_factor = 0.0
-    black_world_for_glossy(scene)
+    if not world_probe:
+        black_world_for_glossy(scene)
 
     r = scene.render
     r.resolution_x, r.resolution_y, r.resolution_percentage = WIDTH, HEIGHT, 100
@@ -90,12 +97,12 @@ def main():
     names = args[1:] or [s["name"] for s in make_corpus.SCENES]
     os.makedirs(outdir, exist_ok=True)
     for name in names:
-        spec = make_corpus.SCENE_BY_NAME[name]
+        spec = SCENE_BY_NAME[name]
         bpy.ops.wm.read_factory_settings(use_empty=False)
         scene = bpy.context.scene
         reset_scene()
         spec["build"](scene)
-        configure_eevee(scene)
+        configure_eevee(scene, spec.get("world_probe", False))
         path = os.path.join(outdir, name + ".eevee.exr")
         scene.render.filepath = path
         scene.render.use_file_extension = False

@@ -7,77 +7,10 @@
 #include <map>
 #include <stdexcept>
 
+#include "ssrcl/specular_albedo.hpp"
 #include "support/exr_fixtures.hpp"
 
 namespace ssrcl::test {
-namespace {
-
-constexpr double kPi = 3.14159265358979323846;
-
-double lambda(const glm::dvec3& w, double alpha) {
-  const double tan2 = (w.x * w.x + w.y * w.y) / (w.z * w.z);
-  return 0.5 * (std::sqrt(1.0 + alpha * alpha * tan2) - 1.0);
-}
-
-}  // namespace
-
-// E(o) = integral of D G1(o) G1(l) / (4 o.z) over l = mean over visible-normal samples of G1(l),
-// taken on a 128 x 128 grid of stratum midpoints (deterministic, converged to ~1e-4 here).
-double directionalAlbedoSeparable(double cosO, double alpha) {
-  const glm::dvec3 o(std::sqrt(std::max(0.0, 1.0 - cosO * cosO)), 0.0, cosO);
-  const glm::dvec3 vh = glm::normalize(glm::dvec3(alpha * o.x, alpha * o.y, o.z));
-  const glm::dvec3 t1 =
-      vh.x * vh.x + vh.y * vh.y > 0 ? glm::normalize(glm::dvec3(-vh.y, vh.x, 0)) : glm::dvec3(1, 0, 0);
-  const glm::dvec3 t2 = glm::cross(vh, t1);
-  const int n = 128;
-  double sum = 0;
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) {
-      const double r = std::sqrt((i + 0.5) / n), phi = 2 * kPi * (j + 0.5) / n;
-      const double s = 0.5 * (1 + vh.z);
-      double p1 = r * std::cos(phi), p2 = r * std::sin(phi);
-      p2 = (1 - s) * std::sqrt(std::max(0.0, 1 - p1 * p1)) + s * p2;
-      const glm::dvec3 nh = p1 * t1 + p2 * t2 + std::sqrt(std::max(0.0, 1 - p1 * p1 - p2 * p2)) * vh;
-      const glm::dvec3 h = glm::normalize(glm::dvec3(alpha * nh.x, alpha * nh.y, std::max(0.0, nh.z)));
-      const glm::dvec3 l = 2 * glm::dot(o, h) * h - o;
-      if (l.z > 0) sum += 1 / (1 + lambda(l, alpha));
-    }
-  return sum / (n * n);
-}
-
-namespace {
-
-// E on a grid of roughness (1/64 steps, alpha = roughness^2) and cos(theta_o) (1/256 steps),
-// filled a roughness row at a time as pixels need it, read bilinearly: corpus frames hold tens of
-// thousands of distinct (roughness, angle) pairs. The bundled samples' stripes lie on the grid.
-class AlbedoTable {
- public:
-  double operator()(double roughness, double cosO) {
-    const double r = std::clamp(roughness, 0.0, 1.0) * kRoughSteps, c = std::clamp(cosO, 0.0, 1.0) * kCosSteps;
-    const int r0 = std::min(int(r), kRoughSteps - 1), c0 = std::min(int(c), kCosSteps - 1);
-    const double fr = r - r0, fc = c - c0;
-    const std::vector<double>& a = row(r0);
-    const std::vector<double>& b = row(r0 + 1);
-    const double lo = a[c0] + fc * (a[c0 + 1] - a[c0]), hi = b[c0] + fc * (b[c0 + 1] - b[c0]);
-    return lo + fr * (hi - lo);
-  }
-
- private:
-  static constexpr int kRoughSteps = 64, kCosSteps = 256;
-  const std::vector<double>& row(int r) {
-    std::vector<double>& values = rows_[r];
-    if (values.empty()) {
-      const double rough = double(r) / kRoughSteps;
-      for (int c = 0; c <= kCosSteps; ++c)  // cos 0 is the grazing limit: nudge it inside
-        values.push_back(directionalAlbedoSeparable(std::max(double(c) / kCosSteps, 1e-4), rough * rough));
-    }
-    return values;
-  }
-  std::map<int, std::vector<double>> rows_;
-};
-
-}  // namespace
-
 CyclesReference loadCyclesReference(const std::string& exr, const std::string& cameraJson, double specular) {
   CyclesReference ref;
   GBufferSource source;
@@ -103,7 +36,6 @@ CyclesReference loadCyclesReference(const std::string& exr, const std::string& c
   for (const char* pass : {"GlossDir.", "GlossInd."})
     for (const char* c : {"R", "G", "B"}) gloss.push_back(&channel(std::string(pass) + c));
 
-  static AlbedoTable albedo;  // shared by every render a program loads
   std::map<float, std::vector<size_t>> byRoughness;
   std::vector<double> values;
   for (int i = 0; i < w * h; ++i) {
@@ -118,7 +50,7 @@ CyclesReference loadCyclesReference(const std::string& exr, const std::string& c
     const float rough = std::clamp(g.roughness.data[i], 0.0f, 1.0f);
     if (!indexed) byRoughness[rough].push_back(ref.pixels.size());
     ref.pixels.push_back(i);
-    ref.scale.push_back(specular * albedo(rough, glm::dot(glm::normalize(n), toEye)));
+    ref.scale.push_back(specularAlbedo(rough, glm::dot(glm::normalize(n), toEye))(specular));
     for (int c = 0; c < 3; ++c) {
       ref.cycles.push_back((*gloss[c])[i] + (*gloss[3 + c])[i]);
       values.push_back(ref.cycles.back());

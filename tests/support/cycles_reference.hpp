@@ -2,8 +2,8 @@
 // Cycles' path-traced answer for the reflecting surfaces of a Blender render (samples/blender,
 // samples/corpus), in the units of our reflection pass. Cycles' Glossy Direct + Indirect on a
 // metal of F0 = `specular` is
-//   specular * E(o, alpha) * (lobe-weighted mean incident radiance),
-// E being GGX's directional albedo with the separable Smith term Cycles 3.4 uses, while our pass
+//   E(o, alpha, F0 = specular) * (lobe-weighted mean incident radiance),
+// E being ssrcl::specularAlbedo (Cycles 3.4's GGX with its Fresnel, separable Smith), while our pass
 // holds that mean times the found fraction A and nothing for the rest. The renders make whatever
 // lies off screen black to glossy rays, so the rest is black there too and every pixel compares.
 #include <string>
@@ -20,7 +20,7 @@ struct CyclesReference {
   GBuffer gbuffer;  // as `ssrcl trace` reads it: base and specular from the glossy passes
   Camera camera;
   std::vector<int> pixels;     // the reflector's pixel indices (see loadCyclesReference)
-  std::vector<double> scale;   // per pixel: specular * E, what turns our rgb into Cycles'
+  std::vector<double> scale;   // per pixel: E(F0 = specular), what turns our rgb into Cycles'
   std::vector<double> cycles;  // per pixel, 3 channels: GlossDir + GlossInd
   double peak = 0;             // 99.9th percentile of those channels: the PSNR peak
   // "all" first; for renders without an object index, then each roughness of more than 1000
@@ -34,7 +34,7 @@ struct CyclesReference {
 CyclesReference loadCyclesReference(const std::string& exr, const std::string& cameraJson = {},
                                     double specular = 1.0);
 
-// Error of specular * E * our rgb against Cycles over a group of reference pixels.
+// Error of E * our rgb against Cycles over a group of reference pixels.
 struct ReferenceError {
   double rmse = 0, meanAbs = 0;
   double bias = 0;             // mean of (ours - Cycles): negative where the pass is too dark
@@ -43,8 +43,5 @@ struct ReferenceError {
   double p99 = 0;              // 99th percentile of per-pixel mean |error|, relative to the peak
 };
 ReferenceError referenceError(const CyclesReference& ref, const Image& reflection, const std::vector<size_t>& group);
-
-// E(o) of single-scatter GGX with separable Smith shadowing, for cos(theta_o) and alpha.
-double directionalAlbedoSeparable(double cosO, double alpha);
 
 }  // namespace ssrcl::test

@@ -50,8 +50,10 @@ std::vector<GoldenRun> readGoldenRuns(const std::string& runsFile) {
 std::string goldenDigest(const std::string& cli, const GoldenRun& run, const std::string& sourceDir,
                          const std::string& workDir) {
   const std::string output = workDir + "/" + run.name + ".exr";
+  std::string options = run.options;  // "{source}" stands for the source tree in file options
+  for (size_t at; (at = options.find("{source}")) != std::string::npos;) options.replace(at, 8, sourceDir);
   const CommandResult r = runCommand(shellQuote(cli) + " trace " + shellQuote(sourceDir + "/" + run.input) + " -o " +
-                                     shellQuote(output) + " --device cpu " + run.options);
+                                     shellQuote(output) + " --device cpu " + options);
   if (r.exitCode != 0) throw std::runtime_error(run.name + ": ssrcl trace failed:\n" + r.output);
   const ExrContents exr = readExr(output);
   std::string line = run.name;

@@ -1,0 +1,22 @@
+#pragma once
+#include "ssrcl/camera.hpp"
+#include "ssrcl/image.hpp"
+#include "ssrcl/io.hpp"
+
+namespace ssrcl {
+
+// The two forms of the reflection pass (README, Output):
+//   Incident    incident radiance averaged over the specular lobe, before any specular colour
+//   GlossyPass  that times the lobe's directional albedo E(view, roughness, F0) (specular_albedo.hpp):
+//               the quantity of Cycles' Glossy Direct + Indirect passes
+enum class OutputForm { Incident, GlossyPass };
+const char* outputFormName(OutputForm form);  // "incident", "glossy-pass": the --output-form values
+
+// Turns a reflection pass (rgb premultiplied by A, as the pipeline writes it) into the glossy-pass
+// form: rgb times E(view, roughness, F0) per pixel and channel, A unchanged. `gbuffer` holds the
+// pipeline's conventions (planar depth, world normals) and either an F0 pass or base colour and
+// metallic passes; `camera` is that of its pixels; constantRoughness >= 0 replaces the roughness
+// pass. Throws Error(InvalidArgument) when the gbuffer has neither. Output finite for any input.
+void applyGlossyPassForm(Image& reflection, const GBuffer& gbuffer, const Camera& camera, float constantRoughness);
+
+}  // namespace ssrcl

@@ -1,0 +1,88 @@
+#include <pybind11/stl.h>
+
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "bindings.hpp"
+#include "gbuffer_input.hpp"
+#include "numpy_image.hpp"
+#include "ssrcl/exr_output.hpp"
+
+namespace ssrcl::python {
+namespace {
+
+using cli::Frame;
+
+// A frame's pass as a read-only view kept alive by the frame; None where the frame has none.
+template <Image GBuffer::*pass>
+py::object passView(py::object frame) {
+  const Image& image = frame.cast<const Frame&>().gbuffer.*pass;
+  return image.empty() ? py::none() : py::object(arrayView(image, frame));
+}
+
+Frame loadFrame(const std::string& path, const std::string& camera, const std::string& renderer,
+                const std::string& depthKind, const std::string& normalSpace, float roughness,
+                const std::string& roughnessChannel, const std::string& position, bool glossyPasses, bool inputCheck) {
+  cli::GBufferInputOptions o;
+  o.renderer = renderer;
+  o.depthKind = depthKind;
+  o.normalSpace = normalSpace;
+  o.roughness = roughness;
+  o.source.roughnessChannel = roughnessChannel;
+  o.source.positionChannels = position;
+  o.source.glossyPasses = glossyPasses;
+  o.inputCheck = inputCheck;
+  return cli::loadFrame(o, path, camera.empty() ? cli::sidecarCameraPath(path) : camera, camera.empty());
+}
+
+void writeExr(const std::string& path, const FloatArray& rgba, const FloatArray& distance, const std::string& layer,
+              bool half, const std::string& compression, const std::string& appendTo, const std::string& headerFrom,
+              const std::optional<ExrWindows>& windows, const std::optional<Camera>& camera,
+              const std::map<std::string, std::string>& attributes) {
+  const ReflectionExrOptions options{layer, half, compression, appendTo, headerFrom, windows, camera, attributes};
+  writeReflectionExr(path, imageFromArray(rgba, "rgba"), imageFromArray(distance, "distance"), options);
+}
+
+}  // namespace
+
+void bindIo(py::module_& m) {
+  py::class_<Frame, std::shared_ptr<Frame>>(m, "Frame",
+                                            "A G-buffer read as `ssrcl trace` reads it: passes in the pipeline's "
+                                            "conventions (planar depth, world normals) as read-only HxWxC arrays, "
+                                            "and the camera of its pixels.")
+      .def_property_readonly("color", &passView<&GBuffer::color>)
+      .def_property_readonly("depth", &passView<&GBuffer::depth>)
+      .def_property_readonly("normal", &passView<&GBuffer::normal>)
+      .def_property_readonly("roughness", &passView<&GBuffer::roughness>)
+      .def_property_readonly("base", &passView<&GBuffer::base>)
+      .def_property_readonly("specular", &passView<&GBuffer::specular>)
+      .def_property_readonly("camera", [](const Frame& f) { return f.camera; })
+      .def_property_readonly("displayCamera", [](const Frame& f) { return f.displayCamera; },
+                             "The camera of the display window (the one written into the output's header).")
+      .def_property_readonly("windows", [](const Frame& f) { return f.windows; })
+      .def_property_readonly("cameraSource", [](const Frame& f) { return f.cameraSource; });
+
+  m.def("loadFrame", &loadFrame, py::arg("path"), py::arg("camera") = "", py::arg("renderer") = "blender",
+        py::arg("depthKind") = "", py::arg("normalSpace") = "", py::arg("roughness") = -1.0f,
+        py::arg("roughnessChannel") = "", py::arg("position") = "", py::arg("glossyPasses") = true,
+        py::arg("inputCheck") = true, py::call_guard<py::gil_scoped_release>(),
+        "Reads a G-buffer EXR and its camera as `ssrcl trace` does: the camera JSON `camera`, by default "
+        "<stem>.camera.json beside the EXR or else the EXR header's camera; the renderer preset's channel names "
+        "and conventions (depthKind, normalSpace override them); roughness >= 0 replaces the roughness channel; "
+        "position names world-position channels to use instead of depth; runs the input check unless "
+        "inputCheck=False.");
+
+  m.def("writeReflectionExr", &writeExr, py::arg("path"), py::arg("rgba"), py::arg("distance"), py::arg("layer") = "",
+        py::arg("half") = false, py::arg("compression") = "", py::arg("appendTo") = "", py::arg("headerFrom") = "",
+        py::arg("windows") = std::nullopt, py::arg("camera") = std::nullopt,
+        py::arg("attributes") = std::map<std::string, std::string>{},
+        "Writes the pass as `ssrcl trace` does (include/ssrcl/exr_output.hpp, ReflectionExrOptions): R,G,B,A and "
+        "distance, or layer.R, ...; half floats; compression (exrCompressionNames()); appendTo: a copy of that EXR "
+        "with the pass added; headerFrom: an EXR whose pixel aspect, screen window and chromaticities are carried "
+        "over; windows and camera written into the header; string attributes.");
+  m.def("exrCompressionNames", &exrCompressionNames);
+}
+
+}  // namespace ssrcl::python

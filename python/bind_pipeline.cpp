@@ -1,0 +1,124 @@
+#include <pybind11/stl.h>
+
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "bindings.hpp"
+#include "gbuffer_input.hpp"
+#include "numpy_image.hpp"
+#include "ssrcl/pipeline.hpp"
+
+namespace ssrcl::python {
+namespace {
+
+// A Pipeline for Python. Its inputs are owned here (the C++ pipeline reads them at commit and
+// execute), and the arrays output() hands out view the C++ pipeline's own buffers, no copy. Such
+// a view keeps that C++ pipeline alive; since commit() and execute() rewrite or reallocate those
+// buffers, they first move to a fresh C++ pipeline (same device, images, camera, settings) while
+// views of the old one are alive, so a view never changes under its reader nor dangles.
+class PythonPipeline {
+ public:
+  explicit PythonPipeline(const Device& device) : device_(device), pipeline_(std::make_shared<Pipeline>(device)) {}
+
+  void setImage(const std::string& name, std::shared_ptr<const Image> image) {
+    pipeline_->setImage(name, *image);  // validates the name first
+    inputs_[name] = std::move(image);
+    committed_ = false;
+  }
+
+  void setCamera(const Camera& camera) {
+    pipeline_->setCamera(camera);
+    camera_ = camera;
+    committed_ = false;
+  }
+
+  TraceSettings& settings() { return settings_; }
+
+  void commit() {
+    leaveViews();
+    pipeline_->settings() = settings_;
+    pipeline_->commit();
+    committed_ = true;
+  }
+
+  void execute() {
+    if (leaveViews() && committed_) pipeline_->commit();  // the fresh pipeline, as the old one was
+    pipeline_->settings() = settings_;
+    pipeline_->execute();
+  }
+
+  py::array output(const std::string& name) const {
+    const Image& image = pipeline_->output(name);
+    auto keeper = new std::shared_ptr<Pipeline>(pipeline_);
+    py::capsule owner(keeper, [](void* p) { delete static_cast<std::shared_ptr<Pipeline>*>(p); });
+    return arrayView(image, owner);
+  }
+
+  const Pipeline& pipeline() const { return *pipeline_; }
+
+ private:
+  // Returns true when views held the pipeline and a fresh one took its place.
+  bool leaveViews() {
+    if (pipeline_.use_count() == 1) return false;
+    auto fresh = std::make_shared<Pipeline>(device_);
+    for (const auto& [name, image] : inputs_) fresh->setImage(name, *image);
+    if (camera_) fresh->setCamera(*camera_);
+    pipeline_ = std::move(fresh);
+    return true;
+  }
+
+  Device device_;
+  std::shared_ptr<Pipeline> pipeline_;
+  std::map<std::string, std::shared_ptr<const Image>> inputs_;
+  std::optional<Camera> camera_;
+  TraceSettings settings_;
+  bool committed_ = false;
+};
+
+}  // namespace
+
+void bindPipeline(py::module_& m) {
+  py::class_<PythonPipeline>(m, "Pipeline",
+                             "The SSR pipeline (include/ssrcl/pipeline.hpp): setImage/setFrame, setCamera, settings, "
+                             "commit(), execute(), output('reflection' | 'distance').")
+      .def(py::init<const Device&>(), py::arg("device"))
+      .def(
+          "setImage",
+          [](PythonPipeline& p, const std::string& name, const FloatArray& array) {
+            p.setImage(name, std::make_shared<const Image>(imageFromArray(array, name.c_str())));
+          },
+          py::arg("name"), py::arg("image"),
+          "An input as an HxWxC float32 array (HxW for one channel): color (3 or 4), depth, normal, roughness, "
+          "base, specular. The pixels are copied once; other dtypes and layouts are converted.")
+      .def(
+          "setFrame",
+          [](PythonPipeline& p, std::shared_ptr<cli::Frame> frame) {
+            const GBuffer& g = frame->gbuffer;
+            const std::pair<const char*, const Image*> passes[] = {{"color", &g.color},       {"depth", &g.depth},
+                                                                   {"normal", &g.normal},     {"roughness", &g.roughness},
+                                                                   {"base", &g.base},         {"specular", &g.specular}};
+            for (const auto& [name, image] : passes)  // shares the frame's pixels, no copy
+              if (!image->empty()) p.setImage(name, std::shared_ptr<const Image>(frame, image));
+            p.setCamera(frame->camera);
+          },
+          py::arg("frame"), "Every pass of a loadFrame() result and its camera, as `ssrcl trace` sets them.")
+      .def("setCamera", &PythonPipeline::setCamera, py::arg("camera"))
+      .def_property(
+          "settings", [](PythonPipeline& p) -> TraceSettings& { return p.settings(); },
+          [](PythonPipeline& p, const TraceSettings& s) { p.settings() = s; }, py::return_value_policy::reference_internal,
+          "The TraceSettings used by the next commit() and execute(); change it in place or assign a new one.")
+      .def("commit", &PythonPipeline::commit, py::call_guard<py::gil_scoped_release>(),
+           "Validates the inputs and settings, compiles the kernels (once per device) and allocates.")
+      .def("execute", &PythonPipeline::execute, py::call_guard<py::gil_scoped_release>())
+      .def("output", &PythonPipeline::output, py::arg("name"),
+           "'reflection' (HxWx4: premultiplied RGB, A = confidence) or 'distance' (HxWx1), as read-only arrays "
+           "over the pipeline's buffers (no copy); later commits and executes leave them unchanged.")
+      .def("stageTimes",
+           [](const PythonPipeline& p) { return p.pipeline().stageTimes().ms; },
+           "Device milliseconds per stage of the last execute().")
+      .def("deviceBytes", [](const PythonPipeline& p) { return p.pipeline().deviceBytes(); });
+}
+
+}  // namespace ssrcl::python
