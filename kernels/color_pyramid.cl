@@ -1,7 +1,15 @@
 // Colour pyramid for prefiltered lookups of rough reflections. Same level geometry as the HZB
 // (each level ceil(previous / 2)); a coarse texel is the mean of the fine texels under it.
-// Texels are (rgb * coverage, coverage) with coverage 1 on surfaces and 0 on sky, so lookups
-// divide by w and average surface colour only.
+// Level 0 is the screen colour with a weight in w (setup.cl: 1 on surfaces that rays collect, 0
+// on sky and specular pixels), kept unweighted for full-resolution reads; coarser texels are
+// (rgb * weight, weight), so lookups divide by w and average the weighted surfaces only.
+
+// A pixel with a specular lobe: renderers write roughness 1 (or none, read as 1) where a surface
+// has none, so anything under 0.9 reflects.
+inline bool specular_pixel(float roughness) { return roughness < 0.9f; }
+
+inline float4 weighted_texel(float4 t, int level) { return level == 0 ? (float4)(t.xyz * t.w, t.w) : t; }
+
 __kernel void color_reduce(__global float4* pyramid, __global const HzbLevel* levels, int dst_level) {
   int x = get_global_id(0), y = get_global_id(1);
   HzbLevel dst = levels[dst_level];
@@ -11,11 +19,12 @@ __kernel void color_reduce(__global float4* pyramid, __global const HzbLevel* le
   int x1 = min(x0 + 1, src.width - 1), y1 = min(y0 + 1, src.height - 1);
   __global const float4* s = pyramid + src.offset;
   // Edge texels may cover one fine column or row only: average what exists, count each once.
-  float4 sum = s[y0 * src.width + x0];
+  int sl = dst_level - 1;
+  float4 sum = weighted_texel(s[y0 * src.width + x0], sl);
   float n = 1.0f;
-  if (x1 != x0) { sum += s[y0 * src.width + x1]; n += 1.0f; }
-  if (y1 != y0) { sum += s[y1 * src.width + x0]; n += 1.0f; }
-  if (x1 != x0 && y1 != y0) { sum += s[y1 * src.width + x1]; n += 1.0f; }
+  if (x1 != x0) { sum += weighted_texel(s[y0 * src.width + x1], sl); n += 1.0f; }
+  if (y1 != y0) { sum += weighted_texel(s[y1 * src.width + x0], sl); n += 1.0f; }
+  if (x1 != x0 && y1 != y0) { sum += weighted_texel(s[y1 * src.width + x1], sl); n += 1.0f; }
   pyramid[dst.offset + y * dst.width + x] = sum / n;
 }
 
@@ -28,9 +37,11 @@ inline float4 pyramid_bilinear(__global const float4* pyramid, __global const Hz
   int2 hi = (int2)(l.width - 1, l.height - 1);
   int2 p00 = clamp(a, (int2)(0), hi), p11 = clamp(a + 1, (int2)(0), hi);
   __global const float4* t = pyramid + l.offset;
-  float4 top = mix(t[p00.y * l.width + p00.x], t[p00.y * l.width + p11.x], f.x);
-  float4 bottom = mix(t[p11.y * l.width + p00.x], t[p11.y * l.width + p11.x], f.x);
-  return mix(top, bottom, f.y);
+  float4 t00 = weighted_texel(t[p00.y * l.width + p00.x], level);
+  float4 t01 = weighted_texel(t[p00.y * l.width + p11.x], level);
+  float4 t10 = weighted_texel(t[p11.y * l.width + p00.x], level);
+  float4 t11 = weighted_texel(t[p11.y * l.width + p11.x], level);
+  return mix(mix(t00, t01, f.x), mix(t10, t11, f.x), f.y);
 }
 
 // Trilinear lookup at a fractional level of detail, coverage divided out: the mean colour of
