@@ -5,7 +5,7 @@ namespace ssrcl::detail {
 void ColorPyramidStage::configure(Device::Impl& device, const TraceSettings& s) {
   reduce_ = s.prefilter;
   if (reduce_)
-    kernel_ = cl::Kernel(device.program({"ssrcl_shared.h", "common.cl", "color_pyramid.cl"}), "color_reduce");
+    kernel_ = cl::Kernel(device.program({"ssrcl_shared.h", "common.cl", "color_lookup.cl", "color_pyramid.cl"}), "color_reduce");
 }
 
 void ColorPyramidStage::plan(DeviceBuffers& buffers, const FrameShape& frame) {

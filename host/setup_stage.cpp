@@ -3,7 +3,7 @@
 namespace ssrcl::detail {
 
 void SetupStage::configure(Device::Impl& device) {
-  kernel_ = cl::Kernel(device.program({"ssrcl_shared.h", "common.cl", "setup.cl"}), "setup");
+  kernel_ = cl::Kernel(device.program({"ssrcl_shared.h", "common.cl", "color_lookup.cl", "setup.cl"}), "setup");
 }
 
 void SetupStage::plan(DeviceBuffers& buffers, const FrameShape& frame, int colorChannels, bool roughnessImage) {

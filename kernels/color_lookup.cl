@@ -1,5 +1,12 @@
-// Lookups into the colour pyramid (kernels/color_pyramid.cl builds it): bilinear within a level,
-// trilinear across levels, for prefiltered hits of rough rays.
+// The colour pyramid's texels (kernels/color_pyramid.cl builds it; setup.cl writes level 0) and
+// lookups into it: bilinear within a level, trilinear across levels, for prefiltered hits of
+// rough rays.
+
+// A pixel with a specular lobe: renderers write roughness 1 (or none, read as 1) where a surface
+// has none, so anything under 0.9 reflects.
+inline bool specular_pixel(float roughness) { return roughness < 0.9f; }
+
+inline float4 weighted_texel(float4 t, int level) { return level == 0 ? (float4)(t.xyz * t.w, t.w) : t; }
 
 inline float4 pyramid_bilinear(__global const float4* pyramid, __global const HzbLevel* levels, int level,
                                float2 pixel) {
@@ -10,9 +17,11 @@ inline float4 pyramid_bilinear(__global const float4* pyramid, __global const Hz
   int2 hi = (int2)(l.width - 1, l.height - 1);
   int2 p00 = clamp(a, (int2)(0), hi), p11 = clamp(a + 1, (int2)(0), hi);
   __global const float4* t = pyramid + l.offset;
-  float4 top = mix(t[p00.y * l.width + p00.x], t[p00.y * l.width + p11.x], f.x);
-  float4 bottom = mix(t[p11.y * l.width + p00.x], t[p11.y * l.width + p11.x], f.x);
-  return mix(top, bottom, f.y);
+  float4 t00 = weighted_texel(t[p00.y * l.width + p00.x], level);
+  float4 t01 = weighted_texel(t[p00.y * l.width + p11.x], level);
+  float4 t10 = weighted_texel(t[p11.y * l.width + p00.x], level);
+  float4 t11 = weighted_texel(t[p11.y * l.width + p11.x], level);
+  return mix(mix(t00, t01, f.x), mix(t10, t11, f.x), f.y);
 }
 
 // Trilinear lookup at a fractional level of detail, coverage divided out: the mean colour of

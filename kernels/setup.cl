@@ -50,12 +50,6 @@ __kernel void setup(SetupParams params, __global const float* color_in,
     float3 p = pixel_view_point(inv_proj, size, (int2)(x, y), d, &view_dir);
     surface = surface && all(isfinite(p));
 
-    // Colour carries surface coverage in w (premultiplied), so prefiltered lookups average
-    // surfaces only: rays never hit the sky, and its colour must not bleed into hits.
-    __global const float* c = color_in + (size_t)i * color_channels;
-    color_out[i] = surface ? (float4)(sanitize_radiance(c[0]), sanitize_radiance(c[1]), sanitize_radiance(c[2]), 1.0f)
-                           : (float4)(0.0f);
-
     // Normals need not be unit length: scaled to their largest component first, so that neither
     // huge (length overflows) nor denormal ones (length underflows) are lost. Zero or non-finite
     // normals leave the pixel without a reflection (it still occludes, facing the camera).
@@ -69,6 +63,16 @@ __kernel void setup(SetupParams params, __global const float* color_in,
 
     float r = constant_roughness >= 0.0f ? constant_roughness : roughness_in[i];
     r = isnan(r) ? 1.0f : clamp(r, 0.0f, 1.0f);
+
+    // Colour (not premultiplied) with, in w, the weight prefiltered lookups give the pixel
+    // (kernels/color_pyramid.cl): 0 on sky, which rays never hit, and on specular pixels, whose
+    // screen colour is what they reflect toward the camera and whose plane the rays leaving a
+    // reflector cannot hit: averaged in, an emitter's light spread onto them and no ray collected
+    // it (tabletop_cm, docs/BENCHMARKS.md "Speckle").
+    __global const float* c = color_in + (size_t)i * color_channels;
+    color_out[i] = surface ? (float4)(sanitize_radiance(c[0]), sanitize_radiance(c[1]), sanitize_radiance(c[2]),
+                                      specular_pixel(r) ? 0.0f : 1.0f)
+                           : (float4)(0.0f);
 
     float nearest = d;
     if (surface && normal_ok) {

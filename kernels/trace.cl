@@ -279,14 +279,15 @@ __kernel void trace_rays(TraceParams params, __global const float* hzb, __global
   float2 s = ray_screen(&ray, t);
   float3 hit = ray_point(&ray, t);
   float4 radiance;
-  if (params.cone_scale > 0.0f && !mirror) {
+  cell = clamp(cell, (int2)(0, 0), size - 1);
+  if (params.cone_scale > 0.0f && !mirror && !specular_pixel(normals[cell.y * size.x + cell.x].w)) {
     // Prefiltered lookup: the mip whose texels match the footprint of this ray's share of the
-    // lobe (a cone of tangent alpha * cone_scale) at the hit distance.
+    // lobe (a cone of tangent alpha * cone_scale) at the hit distance. A hit on a specular pixel
+    // (which the pyramid leaves out, setup.cl) reads its own colour.
     float px_per_unit = 0.5f * (float)size.y * fabs(proj.s5) * ray_q(&ray, t).w;
     float footprint = 2.0f * length(hit - p) * alpha * params.cone_scale * px_per_unit;
     radiance = pyramid_sample(color_pyramid, levels, level_count, s, log2(fmax(footprint, 1.0f)));
   } else {
-    cell = clamp(cell, (int2)(0, 0), size - 1);
     radiance = color_pyramid[cell.y * size.x + cell.x];
   }
   // A hit on a glossy pixel: its screen colour is what it reflects toward the camera, not toward
@@ -295,7 +296,6 @@ __kernel void trace_rays(TraceParams params, __global const float* hzb, __global
   // nothing on screen (confidence c2 < 1) the screen colour stays the best guess for that share.
   // A pixel wrongly marked glossy (a material that writes no roughness reads 0) has specular
   // colour 0 and keeps its base: its screen colour.
-  cell = clamp(cell, (int2)(0, 0), size - 1);
   int q = cell.y * size.x + cell.x;
   float4 nq = normals[q];
   if (params.has_base && nq.w < params.glossy_hit_roughness) {

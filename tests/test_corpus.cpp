@@ -71,8 +71,9 @@ TEST(Corpus, AdaptiveThicknessHoldsAgainstEachScenesBestConstant) {
     const Scored& s = scored(scene);
     EXPECT_GE(s.errors.at("default").psnr, bestConstant(s) - 0.3) << scene;
   }
-  // Measured: tabletop_cm 24.8 dB default against 20.6 at 0.2%; mirror_glossy_tiles 32.2 vs 30.0.
-  EXPECT_GT(scored("tabletop_cm").errors.at("default").psnr, scored("tabletop_cm").errors.at("constant 0.002").psnr + 3.0);
+  // Measured: tabletop_cm 25.4 dB default against 20.7 at 0.2%; mirror_glossy_tiles 32.2 vs 30.0.
+  EXPECT_GT(scored("tabletop_cm").errors.at("default").psnr,
+            scored("tabletop_cm").errors.at("constant 0.002").psnr + 3.0);
   EXPECT_GT(scored("mirror_glossy_tiles").errors.at("default").psnr,
             scored("mirror_glossy_tiles").errors.at("constant 0.002").psnr + 1.5);
 }
@@ -80,12 +81,12 @@ TEST(Corpus, AdaptiveThicknessHoldsAgainstEachScenesBestConstant) {
 // Absolute floors at the measured PSNR, less 0.3 dB for device and driver differences.
 TEST(Corpus, DefaultsMeetMeasuredAccuracy) {
   const std::map<std::string, double> measured = {
-      {"tabletop_cm", 24.80}, {"thin_objects", 25.28}, {"mirror_glossy_tiles", 32.22}, {"night_street", 24.73}};
+      {"tabletop_cm", 25.40}, {"thin_objects", 25.39}, {"mirror_glossy_tiles", 32.16}, {"night_street", 24.73}};
   for (const auto& [scene, psnr] : measured) EXPECT_GE(scored(scene).errors.at("default").psnr, psnr - 0.3) << scene;
 }
 
 // Speckle: rough ground reflecting small bright neon. The prefiltered lookup cuts the 99th
-// percentile of per-pixel error (measured 0.308 -> 0.178 of the peak) and raises PSNR (19.9 ->
+// percentile of per-pixel error (measured 0.309 -> 0.178 of the peak) and raises PSNR (19.9 ->
 // 24.7 dB); it darkens the pass a little on average (mean signed error -0.026 against -0.001,
 // peak 2.02): the price of the cone's averaging, bounded here at 2% of the peak.
 TEST(Corpus, PrefilterRemovesSpeckle) {
@@ -94,6 +95,18 @@ TEST(Corpus, PrefilterRemovesSpeckle) {
   EXPECT_LT(on.p99, 0.65 * off.p99);
   EXPECT_GT(on.psnr, off.psnr + 4.0);
   EXPECT_LT(std::abs(on.bias), 0.02 * s.ref.peak);
+}
+
+// Specular pixels stay out of the colour pyramid (kernels/color_pyramid.cl). On a glossy table
+// with lamps standing on it, averaging the table's own texels into the lamps' footprints spread
+// their light where no ray collects it: measured on tabletop_cm, p99 of per-pixel error 0.147
+// prefiltered against 0.106 at full resolution and mean signed error -0.183 against -0.163 before;
+// 0.111 against 0.105 and -0.171 against -0.163 now.
+TEST(Corpus, PrefilterLeavesSpecularPixelsOut) {
+  const Scored& s = scored("tabletop_cm");
+  const ReferenceError on = s.errors.at("default"), off = s.errors.at("no prefilter");
+  EXPECT_LT(on.p99, 1.15 * off.p99);
+  EXPECT_LT(std::abs(on.bias - off.bias), 0.015);
 }
 
 }  // namespace
