@@ -222,7 +222,7 @@ class ErrorTest(unittest.TestCase):
             p.setImage("colour", scene.color)
         with self.assertRaisesRegex(ssrcl.InvalidArgumentError, "'normal' must be an HxWxC"):
             p.setImage("normal", scene.normal[None])
-        with self.assertRaisesRegex(ssrcl.InvalidArgumentError, "before commit"):
+        with self.assertRaisesRegex(ssrcl.InvalidOperationError, "before commit"):
             p.execute()
 
     def test_files(self):
