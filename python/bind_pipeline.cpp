@@ -34,6 +34,14 @@ class PythonPipeline {
     committed_ = false;
   }
 
+  // None (an empty pointer) turns the environment fill off.
+  void setEnvironment(std::shared_ptr<const EnvironmentMap> environment) {
+    static const EnvironmentMap none;  // the pipeline keeps a pointer: never a temporary
+    pipeline_->setEnvironment(environment ? *environment : none);
+    environment_ = std::move(environment);
+    committed_ = false;
+  }
+
   TraceSettings& settings() { return settings_; }
 
   void commit() {
@@ -65,6 +73,7 @@ class PythonPipeline {
     auto fresh = std::make_shared<Pipeline>(device_);
     for (const auto& [name, image] : inputs_) fresh->setImage(name, *image);
     if (camera_) fresh->setCamera(*camera_);
+    if (environment_) fresh->setEnvironment(*environment_);
     pipeline_ = std::move(fresh);
     return true;
   }
@@ -73,6 +82,7 @@ class PythonPipeline {
   std::shared_ptr<Pipeline> pipeline_;
   std::map<std::string, std::shared_ptr<const Image>> inputs_;
   std::optional<Camera> camera_;
+  std::shared_ptr<const EnvironmentMap> environment_;
   TraceSettings settings_;
   bool committed_ = false;
 };
@@ -105,6 +115,9 @@ void bindPipeline(py::module_& m) {
           },
           py::arg("frame"), "Every pass of a loadFrame() result and its camera, as `ssrcl trace` sets them.")
       .def("setCamera", &PythonPipeline::setCamera, py::arg("camera"))
+      .def("setEnvironment", &PythonPipeline::setEnvironment, py::arg("environment"),
+           "Environment fill (an EnvironmentMap, or None to turn it off): the lobe share not found on screen "
+           "takes the environment, settings.environmentRotation / environmentIntensity; A stays the screen fraction.")
       .def_property(
           "settings", [](PythonPipeline& p) -> TraceSettings& { return p.settings(); },
           [](PythonPipeline& p, const TraceSettings& s) { p.settings() = s; }, py::return_value_policy::reference_internal,

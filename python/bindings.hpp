@@ -12,5 +12,6 @@ void bindCamera(py::module_& m);
 void bindDevice(py::module_& m);
 void bindPipeline(py::module_& m);
 void bindIo(py::module_& m);
+void bindEnvironment(py::module_& m);
 
 }  // namespace ssrcl::python

@@ -10,6 +10,7 @@ PYBIND11_MODULE(ssrcl, m) {
   bindSettings(m);
   bindCamera(m);
   bindDevice(m);
+  bindEnvironment(m);
   bindPipeline(m);
   bindIo(m);
 }

@@ -22,6 +22,8 @@ sys.path.insert(0, os.path.join(SOURCE_DIR, "samples", "blender"))
 import minexr  # noqa: E402  (the samples' pure-Python EXR reader)
 
 GLOSSY = os.path.join(SOURCE_DIR, "samples", "blender", "glossy", "glossy.exr")
+TINTED = os.path.join(SOURCE_DIR, "samples", "blender", "tinted_glossy", "tinted_glossy.exr")
+ENV_DIR = os.path.join(SOURCE_DIR, "samples", "corpus", "environment")
 
 
 def bits(array):
@@ -135,6 +137,61 @@ class CliEquivalenceTest(unittest.TestCase):
             ssrcl.writeReflectionExr(py_out, rgba, distance, compression="none", headerFrom=GLOSSY,
                                      windows=frame.windows, camera=frame.displayCamera, attributes=record)
             self.assertTrue(filecmp.cmp(py_out, cli_out, shallow=False))
+
+
+def cli_pass(tmp, args):
+    """RGBA of `ssrcl trace` run with `args` (input and options)."""
+    out = os.path.join(tmp, "cli.exr")
+    subprocess.run([CLI, "trace", *args, "-o", out, "--compression", "none"], check=True)
+    return exr_channels(minexr.ExrFile(out), ["R", "G", "B", "A"])
+
+
+def python_pass(frame, settings, environment=None):
+    p = ssrcl.Pipeline(ssrcl.Device())
+    p.setFrame(frame)
+    p.setEnvironment(environment)
+    p.settings = settings
+    p.commit()
+    p.execute()
+    return p.output("reflection")
+
+
+class CliEquivalenceOfOptionsTest(unittest.TestCase):
+    def test_environment_fill_matches_cli(self):
+        shot, sky = os.path.join(ENV_DIR, "env_plaza.exr"), os.path.join(ENV_DIR, "sky.exr")
+        with tempfile.TemporaryDirectory() as tmp:
+            cli = cli_pass(tmp, [shot, "--seed", "3", "--spp", "1", "--environment", sky,
+                                 "--environment-rotation", "30", "--environment-intensity", "0.5"])
+        env = ssrcl.loadEnvironmentMap(sky)
+        self.assertEqual(env.source, sky)
+        self.assertEqual(env.level(0).shape[1], 2 * env.level(0).shape[0])
+        settings = ssrcl.TraceSettings(seed=3, samplesPerPixel=1, environmentRotation=30, environmentIntensity=0.5)
+        frame = ssrcl.loadFrame(shot)
+        filled = python_pass(frame, settings, env)
+        np.testing.assert_array_equal(bits(filled), bits(cli))
+        # The fill adds the environment where the screen misses (A < 1) and leaves A alone.
+        premultiplied = python_pass(frame, settings)
+        np.testing.assert_array_equal(bits(filled[..., 3]), bits(premultiplied[..., 3]))
+        misses = premultiplied[..., 3] < 0.5
+        self.assertGreater(np.count_nonzero(misses), 1000)
+        self.assertGreater(filled[misses, :3].mean(), premultiplied[misses, :3].mean() + 0.01)
+
+    def test_glossy_pass_form_matches_cli(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            cli = cli_pass(tmp, [TINTED, "--seed", "5", "--spp", "1", "--output-form", "glossy-pass"])
+        frame = ssrcl.loadFrame(TINTED, outputForm="glossy-pass")
+        incident = python_pass(frame, ssrcl.TraceSettings(seed=5, samplesPerPixel=1))
+        glossy = ssrcl.applyGlossyPassForm(incident, frame)
+        np.testing.assert_array_equal(bits(glossy), bits(cli))
+        # Copper's F0 is below 1 and red-heavy: the form darkens, blue most.
+        lit = incident[..., 3] > 0.5
+        ratio = glossy[lit, :3].sum(axis=0) / incident[lit, :3].sum(axis=0)
+        self.assertTrue(np.all(ratio < 1.0) and ratio[0] > ratio[2], ratio)
+
+    def test_glossy_pass_form_needs_material_passes(self):
+        frame = ssrcl.loadFrame(GLOSSY)  # read without the glossy-pass form: no material passes
+        with self.assertRaises(ssrcl.InvalidArgumentError):
+            ssrcl.applyGlossyPassForm(np.zeros((frame.color.shape[0], frame.color.shape[1], 4), np.float32), frame)
 
 
 class AnalyticMirrorTest(unittest.TestCase):
