@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <filesystem>
 #include <string>
 #include <utility>
 #include <vector>
@@ -137,6 +138,34 @@ std::vector<Found> enumerate() {
   return found;
 }
 
+// PoCL (the usual CPU driver) lists no device when it cannot create its kernel cache
+// (POCL_CACHE_DIR, else $XDG_CACHE_HOME/pocl, else $HOME/.cache/pocl): a farm node with a
+// read-only HOME looks like one without a driver. Returns that directory when it cannot be
+// created or written, else "". Only asked once no device was found.
+std::string unwritablePoclCache() {
+  namespace fs = std::filesystem;
+  fs::path dir;
+  if (const char* d = std::getenv("POCL_CACHE_DIR"); d && *d)
+    dir = d;
+  else if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x)
+    dir = fs::path(x) / "pocl";
+  else if (const char* h = std::getenv("HOME"); h && *h)
+    dir = fs::path(h) / ".cache" / "pocl";
+  else
+    return "";
+  std::error_code ec;
+  fs::create_directories(dir, ec);  // as PoCL would
+  return !ec && access(dir.c_str(), W_OK) == 0 ? "" : dir.string();
+}
+
+std::string noDeviceMessage() {
+  const std::string cache = unwritablePoclCache();
+  if (!cache.empty())
+    return "no OpenCL device found: PoCL cannot create its kernel cache in '" + cache +
+           "' (not writable); set POCL_CACHE_DIR to a writable directory (e.g. POCL_CACHE_DIR=$TMPDIR/pocl)";
+  return "no OpenCL device found (is an OpenCL driver such as pocl-opencl-icd installed?)";
+}
+
 std::vector<Found> enumerateOrThrow() {
   try {
     return enumerate();
@@ -207,7 +236,7 @@ std::vector<DeviceInfo> Device::list() {
 Device::Device(DeviceType type) {
   auto found = enumerateOrThrow();
   if (found.empty())
-    throw Error(ErrorCode::NoDevice, "no OpenCL device found (is an OpenCL driver such as pocl-opencl-icd installed?)");
+    throw Error(ErrorCode::NoDevice, noDeviceMessage());
   auto pick = [&](bool gpu) -> const Found* {
     for (const auto& f : found)
       if (f.info.isGpu == gpu) return &f;

@@ -97,6 +97,20 @@ TEST_F(Batch, SkipsExistingOutputsUnlessOverwrite) {
   EXPECT_NE(inode(output(1001)), first);
 }
 
+// A killed run (SIGKILL: no chance to clean up) leaves its temporary; a rerun removes it, also
+// when the frame it belonged to was finished since and nothing is left to run. A hidden file
+// that is not one of this batch's temporaries stays.
+TEST_F(Batch, ResumeRemovesStaleTemporariesBesideFinishedFrames) {
+  ASSERT_EQ(batch().exitCode, 0);
+  const std::string stale = outDir + "/.shot.1002.refl.exr.tmp.99999", foreign = outDir + "/.keep.tmp.1";
+  ssrcl::test::writeBytes(stale, "partial");
+  ssrcl::test::writeBytes(foreign, "not ours");
+  auto r = batch();
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_FALSE(fs::exists(stale)) << r.output;
+  EXPECT_TRUE(fs::exists(foreign));
+}
+
 TEST_F(Batch, ABadFrameIsReportedAndTheOthersAreDone) {
   corrupt(1002);
   auto r = batch("--report " + shellQuote(dir.file("r.json")));

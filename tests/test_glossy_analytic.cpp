@@ -496,14 +496,16 @@ TEST_P(GlossySsr, FastPathBiasAndError) {
   record("no_reuse_4spp", e4);
   record("no_reuse_1spp", e1);
   for (int ch = 0; ch < 3; ++ch) RecordProperty("medium_tint_" + std::to_string(ch), std::to_string(tint[ch]));
-  // Measured (5x5 reuse): |bias A| <= 0.0026, per channel |bias rgb| <= 0.0024, rms A 0.031-0.038,
-  // rms rgb 0.020-0.024. Bounds: the A bias may reach half the outline's one-pixel envelope
-  // (~0.008, see the reference test), the channel biases 2x the largest measured before the
-  // tangent-plane hit test (0.0064), the rms 1.4x.
-  EXPECT_LT(std::abs(e.biasA), 0.008);
-  for (int ch = 0; ch < 3; ++ch) EXPECT_LT(std::abs(e.biasChannel[ch]), 0.013) << ch;
-  EXPECT_LT(e.rmsA, 0.055);
-  EXPECT_LT(e.rmsRgb, 0.034);
+  // Measured (5x5 reuse, PoCL, issue 17): bias A -0.0022 (r 0.3) and -0.0016 (r 0.6), per
+  // channel |bias rgb| <= 0.0020, rms A 0.031-0.038, rms rgb 0.020-0.024. Bounds at those values
+  // plus a margin: the seed is fixed, so what moves them is float rounding of hit decisions on
+  // another platform (a few pixels of ~5600): 0.004 for the biases, 10% on the rms. A GGX pdf
+  // evaluated at 1.05 alpha (bias A +0.0054 at r 0.6) or rays reused with the wrong weight
+  // exceed them (scripts/mutation-check.sh).
+  EXPECT_LT(std::abs(e.biasA), 0.004);
+  for (int ch = 0; ch < 3; ++ch) EXPECT_LT(std::abs(e.biasChannel[ch]), 0.004) << ch;
+  EXPECT_LT(e.rmsA, 0.042);
+  EXPECT_LT(e.rmsRgb, 0.027);
   // Reuse pays: the same 4 rays without neighbours are ~2.7x noisier, 1 ray ~7x.
   EXPECT_LT(e.rmsA, 0.6 * e4.rmsA);
   EXPECT_LT(e.rmsRgb, 0.6 * e4.rmsRgb);
@@ -532,8 +534,9 @@ TEST_P(GlossySsr, RaysFollowingRoughnessStayUnbiased) {
   const Errors e = compare(c, adaptive), e1 = compare(c, runSsr(c, s)), e4 = compare(c, runSsr(c, {}));
   std::cout << "r " << c.roughness << " rays follow roughness: " << describe(e) << "\n";
   record("adaptive", e);
-  EXPECT_LT(std::abs(e.biasA), 0.008);
-  for (int ch = 0; ch < 3; ++ch) EXPECT_LT(std::abs(e.biasChannel[ch]), 0.013) << ch;
+  // Measured bias A -0.0030 (r 0.6), channels within 0.0027; bounds as for the fast path.
+  EXPECT_LT(std::abs(e.biasA), 0.004);
+  for (int ch = 0; ch < 3; ++ch) EXPECT_LT(std::abs(e.biasChannel[ch]), 0.004) << ch;
   EXPECT_LT(e.rmsA, e1.rmsA);
   EXPECT_GT(e.rmsA, e4.rmsA);
 }

@@ -159,20 +159,31 @@ TEST_F(Hostile, CorruptUncompressedValuesStillGiveASanePass) {
   writeExr(shot, kW, kH, good.channels, options);
   const std::string bytes = readBytes(shot);
   std::mt19937 rng(7);
+  int written = 0;
+  // The file ends with one chunk per scanline: its y and byte count (8 bytes, structure a reader
+  // rightly refuses when broken), then the pixels.
+  size_t lineBytes = 0;
+  for (const ExrChannel& c : good.channels) lineBytes += size_t(kW) * (c.type == Imf::HALF ? 2 : 4);
+  const size_t chunk = 8 + lineBytes, pixelsStart = bytes.size() - size_t(kH) * chunk;
   for (int round = 0; round < 4; ++round) {
     std::string bad = bytes;
-    // Scatter 0xff bytes (NaN/-Inf patterns in float and half) over the last 80% of the file.
-    for (int k = 0; k < 400; ++k)
-      bad[bytes.size() / 5 + rng() % (bytes.size() * 4 / 5)] = char(round % 2 ? 0xff : 0x7f);
+    // Scatter 0xff bytes (NaN/-Inf patterns in float and half) over the pixel bytes.
+    for (int k = 0; k < 400; ++k) {
+      const size_t at = pixelsStart + rng() % (bytes.size() - pixelsStart);
+      if ((at - pixelsStart) % chunk >= 8) bad[at] = char(round % 2 ? 0xff : 0x7f);
+    }
     writeBytes(shot, bad);
     const CommandResult r = runCommand(trace());
     ASSERT_TRUE(r.exitCode == 0 || r.exitCode == 2) << r.output;
     if (r.exitCode != 0) continue;
+    ++written;
     const ExrContents exr = readExr(out);
     for (const char* c : {"R", "G", "B", "A", "distance"})
       for (float v : exr.channels.at(c).values) ASSERT_TRUE(std::isfinite(v)) << c;
     for (float a : exr.channels.at("A").values) ASSERT_TRUE(a >= 0.0f && a <= 1.0f) << a;
   }
+  // Without a written pass the loop above asserted nothing about the values.
+  EXPECT_GT(written, 0);
 }
 
 // Byte offset of a box2i attribute's value in an EXR header.
@@ -351,6 +362,23 @@ TEST_F(Hostile, NoOpenClPlatform) {
     EXPECT_NE(devices.output.find("no OpenCL device found"), std::string::npos) << devices.output;
     expectFailure(trace(), 3, "", {"no OpenCL device found", "pocl-opencl-icd"}, env);
   }
+}
+
+// A farm node whose HOME cannot be written: PoCL cannot create its cache and lists no device.
+// The error must say so and name the remedy, not send the user to install a driver. (/proc
+// refuses new directories even to root.)
+TEST_F(Hostile, UnwritablePoclCacheIsReportedWithTheRemedy) {
+  const std::string env = "env -u POCL_CACHE_DIR -u XDG_CACHE_HOME HOME=/proc/ssrcl-no-home ";
+  const CommandResult probe = runCommand(env + cli("devices"));
+  if (probe.exitCode == 0) GTEST_SKIP() << "this OpenCL driver lists devices without a writable cache";
+  EXPECT_EQ(probe.exitCode, 3) << probe.output;
+  for (const char* needle : {"/proc/ssrcl-no-home/.cache/pocl", "not writable", "POCL_CACHE_DIR"})
+    EXPECT_NE(probe.output.find(needle), std::string::npos) << needle << " in: " << probe.output;
+  expectFailure(trace(), 3, "", {"PoCL cannot create its kernel cache", "POCL_CACHE_DIR"}, env);
+  // The remedy works.
+  const CommandResult fixed =
+      runCommand(env + "POCL_CACHE_DIR=" + shellQuote(dir.file("pocl-cache")) + " " + cli("devices"));
+  EXPECT_EQ(fixed.exitCode, 0) << fixed.output;
 }
 
 TEST_F(Hostile, KernelBuildFailureShowsTheBuildLog) {

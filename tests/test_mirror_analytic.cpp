@@ -374,19 +374,57 @@ TEST_P(MirrorSsrTest, MatchesExactReflections) {
     for (std::size_t i = 0; i < v.size() && i < 25; ++i) out += "  " + v[i] + "\n";
     return out + "  (" + std::to_string(v.size()) + " in all)\n";
   };
-  // Visible: well over 95% within the per-pixel allowance, and on the resolvable ones (where
-  // one pixel of error costs less than the fixed tolerances) within those. The residue is
-  // hits the march steps over or misses by more than a pixel.
-  EXPECT_GE(colorRate, 0.97) << dump(badVisible);
-  EXPECT_GE(distRate, 0.97) << dump(badVisible);
-  EXPECT_GE(resolvableRate, 0.97) << dump(badVisible);
+  // Visible: within the per-pixel allowance, and on the resolvable ones (where one pixel of
+  // error costs less than the fixed tolerances) within those. The residue is hits the march steps
+  // over or misses by more than a pixel. Measured (PoCL, issue 17) over the four cases: colour
+  // 0.9938-0.9959, distance 0.9932-0.9965, resolvable 0.9948-0.9973. Floor 0.99: the margin is
+  // for hit decisions at pixel edges that another platform's float rounding flips (tens of pixels
+  // of 10000-40000); twice the surface thickness falls below it (colour 0.970 on mirror_wall).
+  EXPECT_GE(colorRate, 0.99) << dump(badVisible);
+  EXPECT_GE(distRate, 0.99) << dump(badVisible);
+  EXPECT_GE(resolvableRate, 0.99) << dump(badVisible);
   // Sky/OffScreen: the exact ray hits nothing on screen, but a screen-space march may pass within
   // thickness behind some surface near silhouettes and screen borders (e.g. a ray leaving through
-  // the bottom edge just above the floor), so 5% slack.
-  EXPECT_GE(missRate, 0.95) << dump(badMiss);
+  // the bottom edge just above the floor). Measured 0.9943-0.9959; floor 0.99 as above (twice the
+  // thickness: 0.978).
+  EXPECT_GE(missRate, 0.99) << dump(badMiss);
   // Occluded: not asserted. The exact hit is hidden; the ray passes behind the occluder and a
   // screen-space tracer reports the occluder whenever it is within thickness there: expected SSR
   // behaviour, only reported.
+}
+
+// Edge fade (a non-default value; every other truth test sets it to 0): a visible hit's A is its
+// exact screen point's distance to the nearest border over edgeFade * the smaller side, clamped to
+// [0, 1]. The hit SSR finds lies within a pixel or two of the exact one, which moves A by up to
+// 2 / (edgeFade * side); hits near silhouettes get the same 3% residue as the colour assertions.
+TEST_P(MirrorSsrTest, EdgeFadeFollowsTheHitsDistanceToTheBorder) {
+  const Case& c = GetParam();
+  const Rendered r = render(c);
+  const float fade = 0.2f;  // wide enough that a large share of the hits lies inside the fade band
+  ssrcl::Device device = ssrcl::test::testDevice();
+  ssrcl::Pipeline p(device);
+  p.setGBuffer(r.g);
+  p.setCamera(r.camera);
+  p.settings().edgeFade = fade;
+  p.commit();
+  p.execute();
+  const ssrcl::Image& refl = p.output("reflection");
+  const double band = fade * std::min(c.width, c.height), tol = 2.0 / band;
+  std::size_t checked = 0, ok = 0, faded = 0;
+  for (int y = 0; y < c.height; ++y)
+    for (int x = 0; x < c.width; ++x) {
+      const MirrorSample& s = r.truth.at(x, y);
+      if (s.cls != ReflectionClass::Visible || !resolvable(s)) continue;
+      const double border = std::min(std::min(s.screen.x, c.width - s.screen.x), std::min(s.screen.y, c.height - s.screen.y));
+      const double expected = std::clamp(border / band, 0.0, 1.0);
+      ++checked;
+      faded += expected < 1.0 - tol;
+      ok += std::abs(refl.at(x, y, 3) - expected) <= tol;
+    }
+  std::cout << caseName(c) << ": edge fade " << fade << ": " << checked << " resolvable hits, " << faded
+            << " inside the band, A within " << tol << " of truth for " << fraction(ok, checked) << "\n";
+  ASSERT_GT(faded, checked / 10);  // the band must matter for the check to mean anything
+  EXPECT_GE(fraction(ok, checked), 0.97);
 }
 
 INSTANTIATE_TEST_SUITE_P(Analytic, MirrorSsrTest, ::testing::ValuesIn(kCases),

@@ -70,6 +70,12 @@ int runBatch(const BatchOptions& o) {
     return kExitOk;
   }
 
+  // Temporaries an interrupted run left, beside frames still to run and frames finished since
+  // (this shard's frames only: another shard's may be being written now).
+  std::vector<const FrameJob*> shardJobs;
+  for (const FrameJob& job : jobs) shardJobs.push_back(&job);
+  removeStaleTemporaries(shardJobs);
+
   StopSignal stop;
   BatchRun run;
   std::string deviceName;
@@ -85,7 +91,6 @@ int runBatch(const BatchOptions& o) {
     const EnvironmentMap environment = o.settings.loadEnvironment();  // loaded and prefiltered once
     BatchRunner runner(device, o.in, record, o.out, o.failFast, o.ioThreads);
     runner.setEnvironment(environment);
-    removeStaleTemporaries(toRun);
     ProgressLine progress(toRun.size(), !o.quiet);
     size_t finished = 0, failed = 0;
     run = runner.run(

@@ -6,6 +6,7 @@
 
 #include "bench_inputs.hpp"
 #include "bench_report.hpp"
+#include "bench_roofline.hpp"
 #include "bench_runner.hpp"
 #include "commands.hpp"
 #include "device_option.hpp"
@@ -23,7 +24,7 @@ struct BenchOptions {
   std::vector<int> sppList;
   std::vector<float> fullRaysRoughness, linearSteps;
   int repetitions = 3, referenceSpp = 64;
-  bool noReference = false, unclassified = false;
+  bool noReference = false, unclassified = false, roofline = false;
 };
 
 std::vector<BenchConfig> configurations(const BenchOptions& o) {
@@ -92,16 +93,19 @@ int runBenchCommand(const BenchOptions& o) {
   Device device = openDevice(o.device);
   const std::vector<BenchConfig> configs = configurations(o);
   std::vector<BenchResult> results;
+  std::vector<RooflineResult> rooflines;
   for (const BenchInput& input : inputs) {
     std::cerr << "bench: " << input.name << "..." << std::endl;
     Image reference;
     if (!o.noReference) reference = referencePass(device, input, o.referenceSpp);
     auto r = runBench(device, input, configs, o.repetitions, o.noReference ? nullptr : &reference);
     results.insert(results.end(), r.begin(), r.end());
+    if (o.roofline) rooflines.push_back(runRoofline(device, input, o.repetitions));
   }
   const std::string deviceName = device.info().name;
   printBenchTable(std::cout, results, deviceName);
   if (!o.scene.empty() && o.sizes.size() > 1) printScaling(std::cout, results);
+  if (o.roofline) printRoofline(std::cout, rooflines);
   if (!o.json.empty()) writeBenchJson(o.json, results, deviceName);
   if (!o.plot.empty()) writeBenchSvg(o.plot, results, deviceName);
   return kExitOk;
@@ -143,6 +147,9 @@ Action addBenchCommand(CLI::App& app) {
                   "Rays per pixel of the reference pass errors are measured against")
       ->capture_default_str()
       ->check(CLI::Range(1, 65536));
+  cmd->add_flag("--roofline", o->roofline,
+                "Also time each input's mirror pass against a native C++ implementation of the same rays "
+                "(OpenCL / native per stage, and whether their hits agree)");
   cmd->add_flag("--no-reference", o->noReference, "Skip the reference pass and the error columns");
   cmd->add_option("--device", o->device, "OpenCL device: index from `ssrcl devices`, cpu, gpu or default");
   cmd->add_option("--json", o->json, "Write every measurement as JSON");

@@ -13,11 +13,6 @@ Pipeline makePipeline(const Device& device, const BenchInput& input) {
   return p;
 }
 
-StageStats stats(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return {v.front(), v[v.size() / 2]};
-}
-
 double luminance(const float* rgb) { return 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2]; }
 
 BenchError compare(const BenchInput& input, float maxRoughness, const Image& pass, const Image& reference) {
@@ -50,6 +45,11 @@ BenchError compare(const BenchInput& input, float maxRoughness, const Image& pas
 }
 
 }  // namespace
+
+StageStats stageStats(std::vector<double> ms) {
+  std::sort(ms.begin(), ms.end());
+  return {ms.front(), ms[ms.size() / 2]};
+}
 
 Image referencePass(const Device& device, const BenchInput& input, int spp) {
   Pipeline p = makePipeline(device, input);
@@ -84,7 +84,7 @@ std::vector<BenchResult> runBench(const Device& device, const BenchInput& input,
       }
       samples["total"].push_back(total);
     }
-    for (auto& [stage, v] : samples) r.stages[stage] = stats(v);
+    for (auto& [stage, v] : samples) r.stages[stage] = stageStats(v);
     r.pixelsTraced = p.stageTimes().tracedPixels;
     r.tilesResolved = p.stageTimes().resolvedTiles;
     r.rays = p.stageTimes().tracedRays;

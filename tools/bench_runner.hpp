@@ -18,6 +18,8 @@ struct BenchConfig {
 struct StageStats {
   double minMs = 0, medianMs = 0;
 };
+// Min and median of a stage's times (milliseconds, at least one).
+StageStats stageStats(std::vector<double> ms);
 
 // Error of a pass against the reference pass over the pixels that reflect (a surface, not above
 // the maximum roughness): RMSE of premultiplied RGB, PSNR against the reference's brightest

@@ -12,10 +12,7 @@ Action addDevicesCommand(CLI::App& app) {
   app.add_subcommand("devices", "List OpenCL devices; '*' marks the default");
   return [] {
     auto devices = Device::list();
-    if (devices.empty()) {
-      std::cerr << "ssrcl: no OpenCL device found (install an OpenCL driver, e.g. pocl-opencl-icd)\n";
-      return kExitDevice;
-    }
+    // With none found this throws NoDevice, whose message says why (exit 3).
     int def = Device(DeviceType::Default).info().index;
     for (const DeviceInfo& d : devices) {
       std::cout << (d.index == def ? "* " : "  ") << d.index << "  " << (d.isGpu ? "GPU" : "CPU") << "  " << d.name

@@ -1,0 +1,333 @@
+#include "native_mirror_trace.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <cfloat>
+#include <chrono>
+#include <cmath>
+#include <functional>
+#include <stdexcept>
+#include <glm/glm.hpp>
+#include <glm/gtc/matrix_inverse.hpp>
+#include <thread>
+
+namespace ssrcl::bench {
+namespace {
+
+using glm::vec2;
+using glm::vec3;
+using glm::vec4;
+using Clock = std::chrono::steady_clock;
+constexpr float kNoSurface = FLT_MAX;  // SSRCL_NO_SURFACE
+constexpr float kBackgroundDepth = 1e10f;
+
+// The row loops in clones for the ISA extensions the CPU has (picked at load time), so the
+// roofline gets FMA and wide vectors where they exist and the binary still runs everywhere;
+// flattened, so what they call is compiled into each clone.
+#if defined(__x86_64__) && defined(__GNUC__)
+#define SSRCL_NATIVE_CLONES __attribute__((flatten, target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+#else
+#define SSRCL_NATIVE_CLONES
+#endif
+
+double msSince(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+// Rows in blocks taken from a shared counter: rays' costs vary a lot between rows.
+void parallelRows(int rows, int threads, const std::function<void(int)>& row) {
+  std::atomic<int> next{0};
+  constexpr int kBlock = 4;
+  auto worker = [&] {
+    for (int y0; (y0 = next.fetch_add(kBlock)) < rows;)
+      for (int y = y0; y < std::min(rows, y0 + kBlock); ++y) row(y);
+  };
+  // No thread for less than a block each: the small pyramid levels would wait on thread starts.
+  threads = std::min(threads, (rows + kBlock - 1) / kBlock);
+  std::vector<std::thread> pool;
+  for (int k = 1; k < threads; ++k) pool.emplace_back(worker);
+  worker();
+  for (std::thread& t : pool) t.join();
+}
+
+struct Level {
+  int offset, width, height;
+};
+
+struct ScreenRay {
+  vec2 s0, ds;
+  vec4 q0, dq;  // xyz = Q, w = k
+  vec4 q(float t) const { return q0 + t * dq; }
+  vec2 screen(float t) const { return s0 + t * ds; }
+  float depth(float t) const { const vec4 v = q(t); return -v.z / v.w; }
+};
+
+}  // namespace
+
+struct NativeMirrorTrace::Impl {
+  int w, h;
+  glm::mat4 proj, invProj;
+  glm::mat3 normalMatrix;
+  float nearPlane, farPlane, thicknessRel, maxRoughness, constantRoughness;
+  int maxIterations;
+  const GBuffer& g;
+  std::vector<Level> levels;
+  std::vector<float> hzb, thickness, distance;
+  std::vector<vec4> positions, normals;
+  std::vector<unsigned char> reflects;
+  long long rays = 0;
+
+  Impl(const GBuffer& gbuffer, const Camera& camera, const TraceSettings& s)
+      : w(camera.width), h(camera.height), proj(camera.projection), invProj(glm::inverse(camera.projection)),
+        normalMatrix(glm::inverseTranspose(glm::dmat3(camera.view))), nearPlane(float(camera.nearPlane)),
+        farPlane(float(camera.farPlane)), thicknessRel(s.thicknessRelative), maxRoughness(s.maxRoughness),
+        constantRoughness(s.constantRoughness), maxIterations(s.maxIterations > 0 ? s.maxIterations : 512),
+        g(gbuffer) {
+    // The pyramid as host/stage_support.cpp lays it out: each level ceil(half) of the last, to 1x1.
+    int offset = 0;
+    for (int lw = w, lh = h;; lw = (lw + 1) / 2, lh = (lh + 1) / 2) {
+      levels.push_back({offset, lw, lh});
+      offset += lw * lh;
+      if (lw == 1 && lh == 1) break;
+    }
+    const size_t n = size_t(w) * h;
+    hzb.resize(offset);
+    thickness.resize(n);
+    distance.resize(n);
+    positions.resize(n);
+    normals.resize(n);
+    reflects.resize(n);
+  }
+
+  vec2 pixelToNdc(vec2 p) const { return {2.0f * p.x / float(w) - 1.0f, 1.0f - 2.0f * p.y / float(h)}; }
+  vec2 ndcToPixel(vec2 n) const { return {(n.x + 1.0f) * 0.5f * float(w), (1.0f - n.y) * 0.5f * float(h)}; }
+
+  // common.cl view_line.
+  void viewLine(vec2 ndc, vec3& origin, vec3& step) const {
+    const vec4 a = invProj * vec4(ndc, 0.0f, 1.0f);
+    const vec4 e = invProj[2];
+    const vec3 v = vec3(a) * e.w - vec3(e) * a.w;
+    step = v / -v.z;
+    origin = e.w != 0.0f ? vec3(e) / e.w : vec3(a) / a.w;
+  }
+
+  float planeDepthAt(vec2 pixel, vec3 p, vec3 n) const {
+    vec3 origin, step;
+    viewLine(pixelToNdc(pixel), origin, step);
+    const float denom = glm::dot(step, n);
+    if (std::fabs(denom) < 1e-20f) return -1.0f;
+    const float depth = glm::dot(p - origin, n) / denom - origin.z;
+    return depth > 0.0f && std::isfinite(depth) ? depth : -1.0f;
+  }
+
+  SSRCL_NATIVE_CLONES void setupRow(int y) {
+    for (int x = 0; x < w; ++x) {
+      const size_t i = size_t(y) * w + x;
+      const float d = g.depth.data[i];
+      vec3 origin, step;
+      viewLine(pixelToNdc(vec2(x + 0.5f, y + 0.5f)), origin, step);
+      const vec3 viewDir = glm::normalize(step);
+      const vec3 p = origin + (d + origin.z) * step;
+      const bool surface = std::isfinite(d) && d >= nearPlane && d <= farPlane && d < kBackgroundDepth &&
+                           std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
+      const vec3 nw(g.normal.data[3 * i], g.normal.data[3 * i + 1], g.normal.data[3 * i + 2]);
+      const float scale = std::max(std::fabs(nw.x), std::max(std::fabs(nw.y), std::fabs(nw.z)));
+      bool normalOk = std::isfinite(scale) && scale > 0.0f;
+      vec3 nv = normalMatrix * (normalOk ? nw / scale : vec3(0.0f));
+      const float len = glm::length(nv);
+      normalOk = normalOk && std::isfinite(len) && len > 1e-20f;
+      nv = normalOk ? nv / len : vec3(0, 0, 1);
+      float r = constantRoughness >= 0.0f ? constantRoughness : g.roughness.data[i];
+      r = std::isnan(r) ? 1.0f : std::clamp(r, 0.0f, 1.0f);
+      float nearest = d;
+      if (surface && normalOk)
+        for (int corner = 0; corner < 4; ++corner) {
+          const float cd = planeDepthAt(vec2(float(x + (corner & 1)), float(y + (corner >> 1))), p, nv);
+          if (cd > 0.0f) nearest = std::min(nearest, std::max(cd, 0.5f * d));
+        }
+      positions[i] = surface ? vec4(p, d) : vec4(0, 0, 0, kNoSurface);
+      hzb[i] = surface ? nearest : kNoSurface;
+      normals[i] = vec4(nv, r);
+      thickness[i] = surface ? thicknessRel * d * std::fabs(glm::dot(viewDir, nv)) : 0.0f;
+      reflects[i] = surface && normalOk && r <= maxRoughness && glm::dot(viewDir, nv) < 0.0f;
+    }
+  }
+
+  SSRCL_NATIVE_CLONES void reduceRow(int l, int y) {
+    const Level dst = levels[l], src = levels[l - 1];
+    const float* s = hzb.data() + src.offset;
+    const int y0 = 2 * y, y1 = std::min(y0 + 1, src.height - 1);
+    for (int x = 0; x < dst.width; ++x) {
+      const int x0 = 2 * x, x1 = std::min(x0 + 1, src.width - 1);
+      hzb[dst.offset + y * dst.width + x] =
+          std::min(std::min(s[y0 * src.width + x0], s[y0 * src.width + x1]),
+                   std::min(s[y1 * src.width + x0], s[y1 * src.width + x1]));
+    }
+  }
+
+  float hzbFetch(int level, glm::ivec2 cell) const {
+    const Level l = levels[level];
+    cell = glm::clamp(cell, glm::ivec2(0), glm::ivec2(l.width - 1, l.height - 1));
+    return hzb[l.offset + cell.y * l.width + cell.x];
+  }
+
+  // trace.cl cell_exit.
+  static float cellExit(const ScreenRay& r, float t, float nudge, float cellSize, glm::ivec2& cellOut) {
+    const vec2 cell = glm::floor(r.screen(t + nudge) / cellSize);
+    cellOut = glm::ivec2(cell);
+    const vec2 boundary = (cell + vec2(r.ds.x > 0.0f, r.ds.y > 0.0f)) * cellSize;
+    vec2 tb = (boundary - r.s0) / r.ds;
+    if (std::fabs(r.ds.x) < 1e-12f) tb.x = INFINITY;
+    if (std::fabs(r.ds.y) < 1e-12f) tb.y = INFINITY;
+    return std::min(tb.x, tb.y);
+  }
+
+  // trace.cl make_screen_ray.
+  bool makeScreenRay(vec3 p0, vec3 p1, ScreenRay& r) const {
+    const vec4 h0 = proj * vec4(p0, 1.0f), h1 = proj * vec4(p1, 1.0f);
+    if (!(h0.w > 0.0f && h1.w > 0.0f)) return false;
+    const float k0 = 1.0f / h0.w, k1 = 1.0f / h1.w;
+    r.s0 = ndcToPixel(vec2(h0) * k0);
+    r.ds = ndcToPixel(vec2(h1) * k1) - r.s0;
+    r.q0 = vec4(p0 * k0, k0);
+    r.dq = vec4(p1 * k1, k1) - r.q0;
+    const vec2 edge(r.ds.x > 0.0f ? float(w) : 0.0f, r.ds.y > 0.0f ? float(h) : 0.0f);
+    vec2 te = (edge - r.s0) / r.ds;
+    if (std::fabs(r.ds.x) < 1e-12f) te.x = INFINITY;
+    if (std::fabs(r.ds.y) < 1e-12f) te.y = INFINITY;
+    const float tMax = std::min(1.0f, std::min(te.x, te.y));
+    r.ds *= tMax;
+    r.dq *= tMax;
+    return std::isfinite(r.s0.x) && std::isfinite(r.s0.y) && std::isfinite(r.ds.x) && std::isfinite(r.ds.y);
+  }
+
+  // trace.cl hit_pixel.
+  float hitPixel(const ScreenRay& ray, vec3 dir, glm::ivec2 cell, float tIn, float tOut, bool& inFront) const {
+    cell = glm::clamp(cell, glm::ivec2(0), glm::ivec2(w - 1, h - 1));
+    const int idx = cell.y * w + cell.x;
+    const vec4 pc = positions[idx];
+    inFront = true;
+    if (pc.w >= kNoSurface) return -1.0f;
+    const vec3 n(normals[idx]);
+    const auto side = [&](float t) { const vec4 q = ray.q(t); return glm::dot(vec3(q), n) - q.w * glm::dot(vec3(pc), n); };
+    const float gIn = side(tIn), gOut = side(tOut);
+    inFront = gOut > 0.0f;
+    if (!(glm::dot(n, dir) < 0.0f)) return -1.0f;
+    if (gIn > 0.0f && gOut <= 0.0f) return tIn + (tOut - tIn) * (gIn / (gIn - gOut));
+    if (gIn <= 0.0f && -gIn / ray.q(tIn).w <= thickness[idx]) return tIn;
+    return -1.0f;
+  }
+
+  // trace.cl trace_hiz.
+  float traceHiz(const ScreenRay& ray, vec3 dir) const {
+    const int levelCount = int(levels.size());
+    const float nudge = 0.01f / std::max(std::fabs(ray.ds.x), std::fabs(ray.ds.y));
+    const bool deeper = ray.q0.z * ray.dq.w - ray.dq.z * ray.q0.w > 0.0f;
+    glm::ivec2 cell;
+    float t = cellExit(ray, 0.0f, nudge, 1.0f, cell);
+    int mip = 0;
+    for (int it = 0; it < maxIterations && t <= 1.0f; ++it) {
+      const float tExit = cellExit(ray, t, nudge, float(1 << mip), cell);
+      if (mip == 0) {
+        bool inFront;
+        const float tHit = hitPixel(ray, dir, cell, t, std::min(tExit, 1.0f), inFront);
+        if (tHit >= 0.0f) return tHit;
+        t = tExit;
+        if (inFront) mip = std::min(1, levelCount - 1);
+        continue;
+      }
+      const float dMin = hzbFetch(mip, cell);
+      if (ray.depth(t) < dMin) {
+        float tCross = INFINITY;
+        if (deeper && dMin < kNoSurface) {
+          const float denom = ray.dq.z + dMin * ray.dq.w;
+          const float root = -(ray.q0.z + dMin * ray.q0.w) / denom;
+          tCross = denom != 0.0f && std::isfinite(root) ? root : INFINITY;
+        }
+        if (tCross <= tExit) {
+          t = std::max(t, tCross);
+          --mip;
+        } else {
+          t = tExit;
+          mip = std::min(mip + 1, levelCount - 1);
+        }
+      } else {
+        --mip;
+      }
+    }
+    return -1.0f;
+  }
+
+  // trace.cl trace_from + the mirror direction of trace_rays.
+  SSRCL_NATIVE_CLONES void traceRow(int y) {
+    for (int x = 0; x < w; ++x) {
+      const size_t i = size_t(y) * w + x;
+      distance[i] = 0.0f;
+      if (!reflects[i]) continue;
+      vec3 origin, step;
+      viewLine(pixelToNdc(vec2(x + 0.5f, y + 0.5f)), origin, step);
+      const vec3 o = -glm::normalize(step), n(normals[i]), p(positions[i]);
+      if (glm::dot(o, n) <= 0.0f) continue;
+      const vec3 dir = 2.0f * glm::dot(o, n) * n - o;
+      const float lengthMax = 1e6f * -p.z;
+      float len = dir.z > 0.0f ? (-nearPlane * 1.001f - p.z) / dir.z
+                : dir.z < 0.0f ? (-farPlane - p.z) / dir.z : lengthMax;
+      len = std::min(len, lengthMax);
+      ScreenRay ray;
+      if (!(len > 0.0f) || !makeScreenRay(p, p + dir * len, ray)) continue;
+      if (!(std::max(std::fabs(ray.ds.x), std::fabs(ray.ds.y)) > 0.0f)) continue;
+      const float t = traceHiz(ray, dir);
+      if (t >= 0.0f) {
+        const vec4 q = ray.q(t);
+        distance[i] = glm::length(vec3(q) / q.w - p);
+      }
+    }
+  }
+};
+
+TraceSettings nativeMirrorSettings() {
+  TraceSettings s = qualityPreset("medium");
+  s.constantRoughness = 0.0f;
+  s.thicknessModel = ThicknessModel::Constant;
+  return s;
+}
+
+HitAgreement compareHitDistances(const std::vector<float>& a, const std::vector<float>& b) {
+  HitAgreement h;
+  for (size_t i = 0; i < std::min(a.size(), b.size()); ++i) {
+    if (!(a[i] > 0.0f) && !(b[i] > 0.0f)) continue;
+    ++h.hitPixels;
+    h.disagreeing += (a[i] > 0.0f) != (b[i] > 0.0f) || std::fabs(a[i] - b[i]) > 0.01f * std::max(a[i], b[i]);
+  }
+  return h;
+}
+
+NativeMirrorTrace::NativeMirrorTrace(const GBuffer& gbuffer, const Camera& camera, const TraceSettings& settings)
+    : impl_(nullptr) {
+  if (settings.constantRoughness < 0.0f && gbuffer.roughness.empty())
+    throw std::invalid_argument("native mirror trace: no roughness image and no constant roughness");
+  impl_ = new Impl(gbuffer, camera, settings);
+}
+NativeMirrorTrace::~NativeMirrorTrace() { delete impl_; }
+
+NativeStageMs NativeMirrorTrace::run(int threads) {
+  Impl& m = *impl_;
+  NativeStageMs ms;
+  auto start = Clock::now();
+  parallelRows(m.h, threads, [&m](int y) { m.setupRow(y); });
+  ms.setup = msSince(start);
+  start = Clock::now();
+  for (int l = 1; l < int(m.levels.size()); ++l)
+    parallelRows(m.levels[l].height, threads, [&m, l](int y) { m.reduceRow(l, y); });
+  ms.hzb = msSince(start);
+  start = Clock::now();
+  parallelRows(m.h, threads, [&m](int y) { m.traceRow(y); });
+  ms.trace = msSince(start);
+  m.rays = std::count(m.reflects.begin(), m.reflects.end(), 1);
+  return ms;
+}
+
+const std::vector<float>& NativeMirrorTrace::distance() const { return impl_->distance; }
+long long NativeMirrorTrace::rays() const { return impl_->rays; }
+
+}  // namespace ssrcl::bench

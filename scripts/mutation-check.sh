@@ -1,0 +1,115 @@
+#!/usr/bin/env bash
+# Mutation check (issue 17): builds the library with deliberately wrong kernels and runs the tests
+# that should notice. Each mutant is an exact text substitution in a copy of kernels/; the copy is
+# embedded through the CMake cache variable SSRCL_KERNEL_SOURCE_DIR in a throwaway build directory,
+# so the shipped kernels and the shipped library are never touched. A mutant is killed when one of
+# its tests fails; a pattern that is not found is reported "not applied" and never counts as killed.
+#
+#   scripts/mutation-check.sh [--fast] [--build-dir DIR] [--only NAME]
+#     --fast       the subset CI runs (a minute or two once the build directory exists)
+#     --build-dir  throwaway build directory (default build-mutants/, reused between runs)
+#     --only NAME  one mutant
+# Ends with the line "K/N mutants killed"; exits 1 unless every mutant was killed.
+set -euo pipefail
+ROOT="$(cd "$(dirname "$0")/.." && pwd)"
+BUILD="$ROOT/build-mutants"
+FAST=0
+ONLY=""
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --fast) FAST=1 ;;
+    --build-dir) BUILD="$(realpath -m "$2")"; shift ;;
+    --only) ONLY="$2"; shift ;;
+    *) echo "mutation-check: unknown argument '$1' (use --fast, --build-dir DIR, --only NAME)" >&2; exit 2 ;;
+  esac
+  shift
+done
+MUTANT_KERNELS="$BUILD/mutant-kernels"
+LOG="$BUILD/mutation-logs"
+
+# Test sets: "executable:gtest-filter" entries, run in order until one fails. test_ggx_sampler is
+# not among them: it compiles ggx.cl and sequence.cl into the host from kernels/ itself, so it
+# never sees a mutant.
+MIRROR="test_mirror_analytic:*MatchesExactReflections*"
+DIFFERENTIAL="test_differential:*"
+GLOSSY_FAST="test_glossy_analytic:*FastPathBiasAndError*"
+GLOSSY="test_glossy_analytic:*GlossySsr*"
+HZB="test_hzb:*"
+EDGE="test_mirror_analytic:*EdgeFade*"
+
+# name | fast (1 = in the CI subset) | kernel file | exact pattern | replacement | tests
+MUTANTS=(
+  "thickness_x0.5|1|trace.cl|<= sc->thickness[idx]|<= 0.5f * sc->thickness[idx]|$DIFFERENTIAL $MIRROR"
+  "thickness_x2|0|trace.cl|<= sc->thickness[idx]|<= 2.0f * sc->thickness[idx]|$DIFFERENTIAL $MIRROR"
+  "no_backface_rejection|1|trace.cl|if (!(dot(n, dir) < 0.0f)) return -1.0f;|/* mutant */|$DIFFERENTIAL $MIRROR"
+  "pdf_alpha_x1.05|1|trace.cl|*pdf = ggx_vndf_pdf_from_half(ol, h, alpha);|*pdf = ggx_vndf_pdf_from_half(ol, h, 1.05f * alpha);|$GLOSSY_FAST $GLOSSY"
+  "smith_g_dropped|0|resolve.cl|ggx_d(h / len, alpha) * ggx_g2(o, l, alpha)|ggx_d(h / len, alpha)|$GLOSSY_FAST $GLOSSY"
+  "smith_g_uncorrelated|0|resolve.cl|ggx_d(h / len, alpha) * ggx_g2(o, l, alpha)|ggx_d(h / len, alpha) * ggx_g1(o, alpha) * ggx_g1(l, alpha)|$GLOSSY_FAST $GLOSSY"
+  "smith_lambda_alpha_linear|0|ggx.cl|sqrt(1.0f + alpha * alpha * tan2)|sqrt(1.0f + alpha * tan2)|$GLOSSY_FAST $GLOSSY"
+  "hzb_max_reduction|1|hzb.cl|hzb[dst.offset + y * dst.width + x] = m;|hzb[dst.offset + y * dst.width + x] = fmax(fmax(s[y0 * src.width + x0], s[y0 * src.width + x1]), fmax(s[y1 * src.width + x0], s[y1 * src.width + x1]));|$HZB $DIFFERENTIAL"
+  "edge_fade_off|1|common.cl|if (!(edge_fade > 0.0f)) return 1.0f;|return 1.0f;|$EDGE"
+  "reuse_weight_uniform|0|resolve.cl|float w = ggx_brdf_cos(ol, ll, alpha) / rad.w;|float w = 1.0f;|$GLOSSY_FAST $GLOSSY"
+  "sequence_rotation_off|0|sequence.cl|float2 u = r2 + shift;|float2 u = r2;|$GLOSSY_FAST $GLOSSY"
+  "mirror_direction_flipped|0|trace.cl|if (mirror) return 2.0f * dot(o, n) * n - o;|if (mirror) return o - 2.0f * dot(o, n) * n;|$MIRROR"
+)
+
+echo "== building the test executables against mutable kernels in $BUILD"
+mkdir -p "$MUTANT_KERNELS" "$LOG"
+cp "$ROOT"/kernels/*.cl "$ROOT"/kernels/*.h "$MUTANT_KERNELS"/
+cmake -S "$ROOT" -B "$BUILD" -DCMAKE_BUILD_TYPE=Release -DSSRCL_KERNEL_SOURCE_DIR="$MUTANT_KERNELS" >"$LOG/configure.log"
+targets() {
+  local t
+  for t in $1; do echo "--target ${t%%:*}"; done | sort -u
+}
+ALL_TESTS="$MIRROR $DIFFERENTIAL $GLOSSY $HZB $EDGE"
+# shellcheck disable=SC2046
+cmake --build "$BUILD" -j"$(nproc)" $(targets "$ALL_TESTS") >"$LOG/build.log" || {
+  tail -30 "$LOG/build.log"; echo "mutation-check: the unmutated build failed" >&2; exit 2; }
+
+# The unmutated kernels must pass every test set, or a "kill" would mean nothing.
+run_tests() {  # prints the first failing entry, returns 1 when one failed
+  local entry
+  for entry in $1; do
+    if ! (cd "$BUILD" && "./tests/${entry%%:*}" --gtest_filter="${entry#*:}" --gtest_brief=1) >"$LOG/$2.${entry%%:*}.log" 2>&1; then
+      echo "$entry"
+      return 1
+    fi
+  done
+}
+if failed=$(run_tests "$ALL_TESTS" baseline); then :; else
+  echo "mutation-check: the unmutated kernels fail $failed (see $LOG/baseline.*.log)" >&2
+  exit 2
+fi
+
+killed=0
+total=0
+printf '%-28s %-10s %-9s %s\n' mutant result seconds "killed by"
+for m in "${MUTANTS[@]}"; do
+  IFS='|' read -r name fast file pattern replacement tests <<<"$m"
+  [ -n "$ONLY" ] && [ "$name" != "$ONLY" ] && continue
+  [ "$FAST" = 1 ] && [ "$fast" != 1 ] && continue
+  total=$((total + 1))
+  cp "$ROOT"/kernels/*.cl "$ROOT"/kernels/*.h "$MUTANT_KERNELS"/
+  if ! PAT="$pattern" REP="$replacement" perl -0pi -e '$n += s/\Q$ENV{PAT}\E/$ENV{REP}/g; END { exit($n ? 0 : 3) }' \
+       "$MUTANT_KERNELS/$file"; then
+    printf '%-28s %-10s %-9s %s\n' "$name" "NOT APPLIED" - "pattern not found in kernels/$file"
+    continue
+  fi
+  start=$SECONDS
+  # shellcheck disable=SC2046
+  if ! cmake --build "$BUILD" -j"$(nproc)" $(targets "$tests") >"$LOG/$name.build.log" 2>&1; then
+    printf '%-28s %-10s %-9s %s\n' "$name" "NOT BUILT" - "see $LOG/$name.build.log"
+    continue
+  fi
+  if failed=$(run_tests "$tests" "$name"); then
+    printf '%-28s %-10s %-9s %s\n' "$name" SURVIVED $((SECONDS - start)) "-"
+  else
+    killed=$((killed + 1))
+    printf '%-28s %-10s %-9s %s\n' "$name" killed $((SECONDS - start)) "$failed"
+  fi
+done
+[ "$total" -gt 0 ] || { echo "mutation-check: no mutant named '$ONLY'" >&2; exit 2; }
+# Leave the throwaway build with the shipped kernels again.
+cp "$ROOT"/kernels/*.cl "$ROOT"/kernels/*.h "$MUTANT_KERNELS"/
+echo "$killed/$total mutants killed"
+[ "$killed" = "$total" ]

@@ -1,0 +1,72 @@
+#include "bench_roofline.hpp"
+
+#include <algorithm>
+#include <iomanip>
+#include <thread>
+
+#include "native_mirror_trace.hpp"
+#include "ssrcl/pipeline.hpp"
+
+namespace ssrcl::cli {
+RooflineResult runRoofline(const Device& device, const BenchInput& input, int repetitions) {
+  const TraceSettings settings = bench::nativeMirrorSettings();
+  Pipeline p(device);
+  p.setGBuffer(input.gbuffer);
+  p.setCamera(input.camera);
+  p.settings() = settings;
+  p.commit();
+  bench::NativeMirrorTrace native(input.gbuffer, input.camera, settings);
+  RooflineResult r;
+  r.input = input.name;
+  r.width = input.camera.width;
+  r.height = input.camera.height;
+  r.threads = int(std::max(1u, std::thread::hardware_concurrency()));
+  r.stages = {"setup", "hzb", "trace"};
+  p.execute();  // warm-up: kernel compilation, first touch
+  native.run(r.threads);
+  std::vector<std::vector<double>> cl(3), nat(3);
+  // Alternating, so both see the same load on a shared machine.
+  for (int k = 0; k < repetitions; ++k) {
+    p.execute();
+    for (size_t s = 0; s < 3; ++s) {
+      const auto& ms = p.stageTimes().ms;
+      const auto it = ms.find(r.stages[s]);
+      cl[s].push_back(it == ms.end() ? 0.0 : it->second);
+    }
+    const bench::NativeStageMs n = native.run(r.threads);
+    nat[0].push_back(n.setup);
+    nat[1].push_back(n.hzb);
+    nat[2].push_back(n.trace);
+  }
+  for (size_t s = 0; s < 3; ++s) {
+    r.opencl.push_back(stageStats(cl[s]));
+    r.native.push_back(stageStats(nat[s]));
+  }
+  r.rays = native.rays();
+  r.hits = bench::compareHitDistances(native.distance(), p.output("distance").data);
+  return r;
+}
+
+void printRoofline(std::ostream& out, const std::vector<RooflineResult>& results) {
+  out << "\nNative roofline (mirror rays of every reflecting pixel, constant thickness, Hi-Z; median ms):\n";
+  for (const RooflineResult& r : results) {
+    out << "  " << r.input << " " << r.width << "x" << r.height << ", " << r.rays << " rays, native on "
+        << r.threads << " threads\n";
+    for (size_t s = 0; s < r.stages.size(); ++s) {
+      const double cl = r.opencl[s].medianMs, nat = r.native[s].medianMs;
+      out << "    " << std::left << std::setw(6) << r.stages[s] << std::right << std::fixed << std::setprecision(2)
+          << "  OpenCL " << std::setw(9) << cl << "  native " << std::setw(9) << nat << "  OpenCL / native "
+          << std::setprecision(2) << (nat > 0 ? cl / nat : 0.0);
+      if (r.stages[s] == "trace")
+        out << "  (" << std::setprecision(1) << r.rays / (cl * 1e3) << " vs " << r.rays / (nat * 1e3)
+            << " Mrays/s)";
+      out << "\n";
+    }
+    out << "    hits agree on " << std::setprecision(4)
+        << (r.hits.hitPixels ? 100.0 * (r.hits.hitPixels - r.hits.disagreeing) / r.hits.hitPixels : 100.0)
+        << "% of " << r.hits.hitPixels
+        << " pixels hit by either\n";
+  }
+}
+
+}  // namespace ssrcl::cli

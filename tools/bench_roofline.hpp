@@ -1,0 +1,28 @@
+#pragma once
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "bench_inputs.hpp"
+#include "bench_runner.hpp"
+#include "native_mirror_trace.hpp"
+#include "ssrcl/device.hpp"
+
+namespace ssrcl::cli {
+
+// The OpenCL mirror pass against its native C++ roofline (bench/native_mirror_trace): the same
+// rays (every reflecting pixel's mirror ray, constant thickness, Hi-Z), timed alternately in one
+// run, and how many pixels' hits agree.
+struct RooflineResult {
+  std::string input;
+  int width = 0, height = 0, threads = 0;
+  long long rays = 0;
+  std::vector<std::string> stages;           // setup, hzb, trace
+  std::vector<StageStats> opencl, native;    // per stage, milliseconds
+  bench::HitAgreement hits;
+};
+
+RooflineResult runRoofline(const Device& device, const BenchInput& input, int repetitions);
+void printRoofline(std::ostream& out, const std::vector<RooflineResult>& results);
+
+}  // namespace ssrcl::cli
