@@ -22,9 +22,10 @@ class PythonPipeline {
  public:
   explicit PythonPipeline(const Device& device) : device_(device), pipeline_(std::make_shared<Pipeline>(device)) {}
 
-  void setImage(const std::string& name, std::shared_ptr<const Image> image) {
-    pipeline_->setImage(name, *image);  // validates the name first
-    inputs_[name] = std::move(image);
+  // `keeper` keeps the pixels `view` points at alive until they are replaced.
+  void setImage(const std::string& name, const ImageView& view, std::shared_ptr<const void> keeper) {
+    pipeline_->setImage(name, view);  // validates the name first
+    inputs_[name] = {view, std::move(keeper)};
     committed_ = false;
   }
 
@@ -71,7 +72,7 @@ class PythonPipeline {
   bool leaveViews() {
     if (pipeline_.use_count() == 1) return false;
     auto fresh = std::make_shared<Pipeline>(device_);
-    for (const auto& [name, image] : inputs_) fresh->setImage(name, *image);
+    for (const auto& [name, input] : inputs_) fresh->setImage(name, input.view);
     if (camera_) fresh->setCamera(*camera_);
     if (environment_) fresh->setEnvironment(*environment_);
     pipeline_ = std::move(fresh);
@@ -80,7 +81,11 @@ class PythonPipeline {
 
   Device device_;
   std::shared_ptr<Pipeline> pipeline_;
-  std::map<std::string, std::shared_ptr<const Image>> inputs_;
+  struct Input {
+    ImageView view;
+    std::shared_ptr<const void> keeper;
+  };
+  std::map<std::string, Input> inputs_;
   std::optional<Camera> camera_;
   std::shared_ptr<const EnvironmentMap> environment_;
   TraceSettings settings_;
@@ -96,12 +101,17 @@ void bindPipeline(py::module_& m) {
       .def(py::init<const Device&>(), py::arg("device"))
       .def(
           "setImage",
-          [](PythonPipeline& p, const std::string& name, const FloatArray& array) {
-            p.setImage(name, std::make_shared<const Image>(imageFromArray(array, name.c_str())));
+          [](PythonPipeline& p, const std::string& name, const py::array& array) {
+            auto held = std::shared_ptr<py::array>(new py::array(viewableArray(array, name.c_str())), [](py::array* a) {
+              py::gil_scoped_acquire gil;  // the last owner may let go without the GIL
+              delete a;
+            });
+            p.setImage(name, viewOfArray(*held, name.c_str()), held);
           },
           py::arg("name"), py::arg("image"),
-          "An input as an HxWxC float32 array (HxW for one channel): color (3 or 4), depth, normal, roughness, "
-          "base, specular. The pixels are copied once; other dtypes and layouts are converted.")
+          "An input as an HxWxC array (HxW for one channel): color (3 or 4), depth, normal, roughness, base, "
+          "specular. float32 and float16 arrays of any positive strides are read where they are (no copy) at "
+          "commit() and execute(), so keep them unchanged until then; other dtypes and layouts are converted once.")
       .def(
           "setFrame",
           [](PythonPipeline& p, std::shared_ptr<cli::Frame> frame) {
@@ -110,7 +120,9 @@ void bindPipeline(py::module_& m) {
                                                                    {"normal", &g.normal},     {"roughness", &g.roughness},
                                                                    {"base", &g.base},         {"specular", &g.specular}};
             for (const auto& [name, image] : passes)  // shares the frame's pixels, no copy
-              if (!image->empty()) p.setImage(name, std::shared_ptr<const Image>(frame, image));
+              if (!image->empty())
+                p.setImage(name, ImageView(image->data.data(), image->width, image->height, image->channels),
+                           std::shared_ptr<const Image>(frame, image));
             p.setCamera(frame->camera);
           },
           py::arg("frame"), "Every pass of a loadFrame() result and its camera, as `ssrcl trace` sets them.")

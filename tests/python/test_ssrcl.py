@@ -218,6 +218,40 @@ class AnalyticMirrorTest(unittest.TestCase):
         self.assertTrue(np.all(rgba[~scene.floor] == 0.0))
 
 
+class InputArrayTest(unittest.TestCase):
+    """Inputs are read where they lie: float16, strided and float32 layouts give the same pass."""
+
+    def trace(self, scene, **images):
+        p = scene.pipeline(ssrcl.TraceSettings(maxRoughness=0.5))
+        for name, image in images.items():
+            p.setImage(name, image)
+        p.commit()
+        p.execute()
+        return np.array(p.output("reflection"))
+
+    def test_half_and_strided_inputs_equal_packed_float32(self):
+        scene = PlaneMirror()
+        color16 = scene.color.astype(np.float16)
+        packed = self.trace(scene, color=np.ascontiguousarray(color16, dtype=np.float32))
+        np.testing.assert_array_equal(bits(self.trace(scene, color=color16)), bits(packed))
+        rgba = np.zeros(scene.color.shape[:2] + (4,), np.float32)  # colour as the RGB of an RGBA array
+        rgba[..., :3] = color16
+        np.testing.assert_array_equal(bits(self.trace(scene, color=rgba[..., :3])), bits(packed))
+        flipped = np.ascontiguousarray(color16[::-1], dtype=np.float32)[::-1]  # negative row stride: copied
+        np.testing.assert_array_equal(bits(self.trace(scene, color=flipped)), bits(packed))
+
+    def test_inputs_are_read_at_execute_not_copied(self):
+        scene = PlaneMirror()
+        color = np.ascontiguousarray(scene.color, dtype=np.float32)
+        p = scene.pipeline(ssrcl.TraceSettings(maxRoughness=0.5))
+        p.setImage("color", color)
+        p.commit()
+        color *= 2.0  # after setImage, before execute: the pipeline reads these very pixels
+        p.execute()
+        doubled = self.trace(scene, color=np.ascontiguousarray(scene.color * 2.0, dtype=np.float32))
+        np.testing.assert_array_equal(bits(p.output("reflection")), bits(doubled))
+
+
 class OutputArrayTest(unittest.TestCase):
     def test_outputs_are_views_that_later_executes_leave_alone(self):
         scene = PlaneMirror()
