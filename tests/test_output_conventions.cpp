@@ -272,6 +272,15 @@ TEST_F(BatchResume, RefusesOutputsMadeOtherwiseUnlessOverwrite) {
   expectRefused("--quality draft --output-layer refl --compression piz", "compression zip");
   expectRefused("--quality draft", "output layer");
 
+  const std::string sky = std::string(SSRCL_SOURCE_DIR) + "/samples/corpus/environment/sky.exr";
+  const std::string otherSky = dir.file("other_sky.exr");
+  fs::copy_file(sky, otherSky);
+  expectRefused("--quality draft --output-layer refl --environment " + shellQuote(sky), "environment none");
+  ASSERT_EQ(batch("--quality draft --output-layer refl --overwrite --environment " + shellQuote(sky)).exitCode, 0);
+  EXPECT_EQ(batch("--quality draft --output-layer refl --environment " + shellQuote(sky)).exitCode, 0);
+  expectRefused("--quality draft --output-layer refl --environment " + shellQuote(otherSky), "'" + otherSky + "'");
+  expectRefused("--quality draft --output-layer refl", "but none");
+
   auto r = batch("--quality draft --output-layer refl --spp 3 --overwrite");
   ASSERT_EQ(r.exitCode, 0) << r.output;
   EXPECT_EQ(json::parse(stringAttribute(readHeader(output(1)), "ssrcl/settings"))["samplesPerPixel"], 3);

@@ -32,6 +32,16 @@ std::string resumeMismatch(const std::string& output, const std::string& input, 
   const std::string recordedForm = form ? *form : "incident";
   if (recordedForm != asked.outputForm) return differs(output, "output form", recordedForm, asked.outputForm);
 
+  // The environment file is an input, not a setting: a different sky makes a different pass.
+  const std::string* inputs = attribute("ssrcl/inputs");
+  const nlohmann::json recordedInputs = inputs ? nlohmann::json::parse(*inputs, nullptr, false) : nlohmann::json();
+  const std::string recordedEnvironment =
+      recordedInputs.is_object() ? recordedInputs.value("environment", std::string()) : std::string();
+  if (recordedEnvironment != asked.environment) {
+    const auto named = [](const std::string& file) { return file.empty() ? std::string("none") : "'" + file + "'"; };
+    return differs(output, "environment", named(recordedEnvironment), named(asked.environment));
+  }
+
   const nlohmann::ordered_json recorded = nlohmann::ordered_json::parse(*settings, nullptr, false);
   if (recorded.is_discarded() || !recorded.is_object())
     return output + ": its ssrcl/settings record is not a JSON object; give --overwrite to recompute it";
