@@ -6,20 +6,15 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
-#include <glm/gtc/matrix_transform.hpp>
 #include <vector>
 
 #include "ssrcl/ssrcl.hpp"
+#include "support/simple_camera.hpp"
 
 int main(int argc, char** argv) {
   const int w = argc > 3 ? std::atoi(argv[1]) : 1920, h = argc > 3 ? std::atoi(argv[2]) : 1080;
   const int frames = argc > 3 ? std::atoi(argv[3]) : 10;
-  ssrcl::Camera camera;
-  camera.width = w;
-  camera.height = h;
-  camera.projection = glm::perspective(1.0, double(w) / h, 0.1, 100.0);
-  camera.nearPlane = 0.1;
-  camera.farPlane = 100.0;
+  const ssrcl::Camera camera = ssrcl::test::perspectiveCamera(w, h);
   ssrcl::Device device(ssrcl::DeviceType::CPU);
   ssrcl::Pipeline pipeline(device);
   // Too rough to trace: execute() is setup and pyramids only, the frame loop is commit-bound.

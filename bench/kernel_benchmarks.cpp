@@ -15,10 +15,10 @@ struct Frame {
 
 const Frame& frame() {
   static const Frame f = [] {
-    const ssrcl::test::Scene s = ssrcl::test::makeScene("spheres_on_mirror");
+    const ssrcl::scenes::Scene s = ssrcl::scenes::makeScene("spheres_on_mirror");
     Frame out;
-    out.camera = ssrcl::test::makeCamera(s.view, 1920, 1080);
-    out.gbuffer = ssrcl::test::renderGBuffer(s, out.camera);
+    out.camera = ssrcl::scenes::makeCamera(s.view, 1920, 1080);
+    out.gbuffer = ssrcl::scenes::renderGBuffer(s, out.camera);
     return out;
   }();
   return f;

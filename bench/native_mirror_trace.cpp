@@ -81,7 +81,7 @@ struct NativeMirrorTrace::Impl {
       : w(camera.width), h(camera.height), proj(camera.projection), invProj(glm::inverse(camera.projection)),
         normalMatrix(glm::inverseTranspose(glm::dmat3(camera.view))), nearPlane(float(camera.nearPlane)),
         farPlane(float(camera.farPlane)), thicknessRel(s.thicknessRelative), maxRoughness(s.maxRoughness),
-        constantRoughness(s.constantRoughness), maxIterations(s.maxIterations > 0 ? s.maxIterations : 512),
+        constantRoughness(s.constantRoughness.value_or(-1.0f)), maxIterations(s.maxIterations > 0 ? s.maxIterations : 512),
         g(gbuffer) {
     // The pyramid as host/stage_support.cpp lays it out: each level ceil(half) of the last, to 1x1.
     int offset = 0;
@@ -304,7 +304,7 @@ HitAgreement compareHitDistances(const std::vector<float>& a, const std::vector<
 
 NativeMirrorTrace::NativeMirrorTrace(const GBuffer& gbuffer, const Camera& camera, const TraceSettings& settings)
     : impl_(nullptr) {
-  if (settings.constantRoughness < 0.0f && gbuffer.roughness.empty())
+  if (!settings.constantRoughness && gbuffer.roughness.empty())
     throw std::invalid_argument("native mirror trace: no roughness image and no constant roughness");
   impl_ = new Impl(gbuffer, camera, settings);
 }

@@ -52,7 +52,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     source.file = path;
     if (naming == 1) {
       source.layer = "";
-      source.constantRoughness = 0.5f;
+      source.readRoughness = false;
     }
     try {
       const ssrcl::GBuffer g = ssrcl::loadGBuffer(source);

@@ -1,9 +1,12 @@
-// Clip planes for cameras whose file does not give them (OpenEXR's header matrices discard z).
+// Clip planes for cameras whose file does not give them (OpenEXR's header matrices discard z),
+// and the check of those a file does give.
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 #include "conventions.hpp"
 #include "ssrcl/camera.hpp"
+#include "ssrcl/error.hpp"
 #include "ssrcl/io.hpp"
 
 namespace ssrcl {
@@ -30,6 +33,21 @@ void fitClipPlanes(Camera& camera, const Image& planarDepth) {
   for (float d : planarDepth.data)
     if (detail::isSurfaceDepth(d)) nearest = std::min(nearest, d);
   setClipPlanes(camera, std::isfinite(nearest) ? 0.5 * nearest : 1.0, INFINITY);
+}
+
+// Every surface must lie between the planes (a renderer clips what does not); 0.1% of slack
+// for depth converted from radial distances or positions in float.
+void checkClipPlanes(const Camera& camera, const Image& planarDepth, const std::string& cameraName) {
+  float nearest = INFINITY, farthest = 0.0f;
+  for (float d : planarDepth.data)
+    if (detail::isSurfaceDepth(d)) nearest = std::min(nearest, d), farthest = std::max(farthest, d);
+  const bool inside = nearest >= camera.nearPlane * (1.0 - 1e-3) && farthest <= camera.farPlane * (1.0 + 1e-3);
+  if (inside || !std::isfinite(nearest)) return;
+  std::ostringstream m;
+  m << cameraName << ": its clip planes (" << camera.nearPlane << " to " << camera.farPlane
+    << ") do not hold the depth pass's surfaces (" << nearest << " to " << farthest
+    << "): the header is not this render's camera; give --camera";
+  throw Error(ErrorCode::InvalidInput, m.str());
 }
 
 }  // namespace ssrcl

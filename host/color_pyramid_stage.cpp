@@ -1,24 +1,48 @@
 #include "color_pyramid_stage.hpp"
 
+#include "setup_stage.hpp"
+#include "trace_stage.hpp"
+
 namespace ssrcl::detail {
 
 void ColorPyramidStage::configure(Device::Impl& device, const TraceSettings& s) {
   reduce_ = s.prefilter;
-  if (reduce_)
-    kernel_ = cl::Kernel(device.program({"ssrcl_shared.h", "common.cl", "color_lookup.cl", "color_pyramid.cl"}), "color_reduce");
+  if (!reduce_) return;
+  const cl::Program& program =
+      device.program({"ssrcl_shared.h", "common.cl", "color_lookup.cl", "color_pyramid.cl", "hit_prefilter.cl"});
+  reduce_kernel_ = cl::Kernel(program, "color_reduce");
+  count_ = cl::Kernel(program, "count_hits");
+  weights_ = cl::Kernel(program, "weights_from_counts");
+  lookup_ = cl::Kernel(program, "prefilter_hits");
 }
 
 void ColorPyramidStage::plan(DeviceBuffers& buffers, const FrameShape& frame) {
   frame_ = frame;
   buffers.add(pyramid, (reduce_ ? frame.pyramidTexels() : frame.pixels()) * sizeof(cl_float4));
+  buffers.add(counts_, reduce_ ? frame.pixels() * sizeof(cl_int) : 0);
 }
 
-void ColorPyramidStage::bind(const HzbStage& hzb) {
-  if (reduce_) bindArgs(kernel_, 0, pyramid, hzb.levels);
+void ColorPyramidStage::bind(const HzbStage& hzb, const SetupStage& setup, const TraceStage& trace) {
+  if (!reduce_) return;
+  bindArgs(reduce_kernel_, 0, pyramid, hzb.levels);
+  bindArgs(count_, 1, setup.rayList, setup.pixelRays, trace.rayRadiance, counts_);
+  bindArgs(weights_, 1, pyramid, counts_);
+  bindArgs(lookup_, 1, setup.rayList, setup.pixelRays, pyramid, hzb.levels, trace.rayRadiance);
 }
 
 void ColorPyramidStage::enqueue(cl::CommandQueue& q, StageEvents& events) {
-  if (reduce_) reducePyramid(q, kernel_, frame_, events, "color_mips");
+  if (reduce_) q.enqueueFillBuffer(counts_, cl_int(0), 0, frame_.pixels() * sizeof(cl_int), nullptr,
+                                   newEvent(events, "color_mips"));
+}
+
+void ColorPyramidStage::prefilterHits(cl::CommandQueue& q, const TraceParams& params, StageEvents& events) {
+  if (!reduce_) return;
+  const cl::NDRange rays(roundUp(size_t(params.listed) * params.batch_size, 64)), pixels(roundUp(frame_.pixels(), 64));
+  for (cl::Kernel* k : {&count_, &weights_, &lookup_}) k->setArg(0, params);
+  q.enqueueNDRangeKernel(count_, cl::NullRange, rays, cl::NDRange(64), nullptr, newEvent(events, "color_mips"));
+  q.enqueueNDRangeKernel(weights_, cl::NullRange, pixels, cl::NDRange(64), nullptr, newEvent(events, "color_mips"));
+  reducePyramid(q, reduce_kernel_, frame_, events, "color_mips");
+  q.enqueueNDRangeKernel(lookup_, cl::NullRange, rays, cl::NDRange(64), nullptr, newEvent(events, "color_mips"));
 }
 
 }  // namespace ssrcl::detail

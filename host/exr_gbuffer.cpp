@@ -360,7 +360,7 @@ GBuffer loadGBuffer(const GBufferSource& source) {
       {"normal", &gbuffer.normal, 3, source.normalFile, source.normalChannels, "Normal.X,Normal.Y,Normal.Z",
        "N.X,N.Y,N.Z"},
   };
-  if (!source.constantRoughness)
+  if (source.readRoughness)
     passes.push_back({"roughness", &gbuffer.roughness, 1, source.roughnessFile, source.roughnessChannel, "roughness.X",
                       "roughness"});
 

@@ -54,7 +54,7 @@ Camera fromEyeToNdc(const glm::dmat4& eyeToNdc, const glm::dmat4& view, const Pi
   const bool perspective = std::abs(w.z) > 1e-6 * scale;
   const double k = perspective ? -w.z : w.w;
   if (!(scale > 0.0) || std::abs(w.x) > 1e-5 * scale || std::abs(w.y) > 1e-5 * scale ||
-      (perspective && std::abs(w.w) > 1e-5 * scale) || k == 0.0)
+      (perspective && std::abs(w.w) > 1e-5 * scale) || !(k > 0.0))
     throw Error(ErrorCode::InvalidInput,
                 where + " is not the projection of a pinhole or orthographic camera looking along its z axis");
   glm::dmat4 p(0.0);
@@ -78,40 +78,39 @@ Camera fromEyeToNdc(const glm::dmat4& eyeToNdc, const glm::dmat4& view, const Pi
   return camera;
 }
 
-// Arnold writes worldToNDC in its screen space instead: x, y in [-1, 1] over the display window,
-// y up (Arnold 4.2's files in github.com/zewt/exrflatten, sample/sample2.exr: world positions P
-// land on their pixels that way). Its files are told by their arnold/* attributes.
-bool writtenByArnold(const Imf::Header& header) {
-  for (auto a = header.begin(); a != header.end(); ++a)
-    if (std::string(a.name()).rfind("arnold/", 0) == 0) return true;
-  return false;
-}
-
-// OpenEXR's NDC: (0,0) top-left, (1,1) bottom-right of the display window, z discarded.
-std::optional<HeaderCamera> standardCamera(const Imf::Header& header, const glm::dmat4& view,
+// worldToCamera with worldToNDC (or worldToScreen). Renderers disagree on both, so each is told
+// from the matrices themselves rather than from the attribute's name:
+// - the projected space: OpenEXR's NDC ((0,0) top-left, (1,1) bottom-right of the display window)
+//   has y down; screen space as OpenImageIO defines it ("worldtoscreen", src/doc/stdmetadata.rst:
+//   x and y in [-1, 1] over the display window) has y up. OIIO wrote that screen matrix under the
+//   name worldToNDC before 2.2 (commit fed34425b), so Arnold 4.2's files carry it so
+//   (github.com/zewt/exrflatten, sample/sample2.exr: P lands on its pixels only when read so), as
+//   do Houdini's (a Mantra file's oiiotool dump in github.com/ynput/ayon-houdini/issues/76).
+// - the camera space: OpenEXR's looks down +z (Arnold's file too); Houdini's looks down -z (the
+//   same dump: its worldToNDC's w is minus its camera z). A perspective projection's w tells
+//   them apart; an orthographic one's cannot, and is read as OpenEXR's.
+// The z the files hold is discarded.
+std::optional<HeaderCamera> standardCamera(const Imf::Header& header, const Imath::M44f& toCamera,
                                            const PixelBox& display, const std::string& path) {
   const Imath::M44f* toNdc = matrix(header, "worldToNDC");
-  const Imath::M44f* toScreen = matrix(header, "worldToScreen");
-  glm::dmat4 toUnit(1.0);  // from the file's projected space to our NDC, y up
-  const Imath::M44f* projected = toNdc ? toNdc : toScreen;
+  const Imath::M44f* projected = toNdc ? toNdc : matrix(header, "worldToScreen");
   if (!projected) return std::nullopt;
-  const bool arnold = toNdc && writtenByArnold(header);
-  if (toNdc && !arnold) {
+  const glm::dmat4 fileCamera = fromImath(toCamera);
+  const glm::dmat4 cameraToProjected = fromImath(*projected) * glm::inverse(fileCamera);
+  const bool lookingDownMinusZ = cameraToProjected[2][3] < 0.0;  // w = -z: Houdini's camera space
+  const bool yUp = cameraToProjected[1][1] > 0.0;                // camera y up is projected y up: screen space
+  glm::dmat4 toUnit(1.0);  // from the file's projected space to our NDC, y up: screen space already is
+  if (!yUp) {
     toUnit[0][0] = 2.0, toUnit[3][0] = -1.0;  // x' = 2x - w
     toUnit[1][1] = -2.0, toUnit[3][1] = 1.0;  // y' = w - 2y
-  } else if (!toNdc) {
-    // RenderMan's screen space, y up, over its default screen window: the display window's
-    // longer side spans [-1, 1] scaled by the frame aspect ratio.
-    const double aspect = double(display.width()) / display.height();
-    toUnit[0][0] = aspect >= 1.0 ? 1.0 / aspect : 1.0;
-    toUnit[1][1] = aspect >= 1.0 ? 1.0 : aspect;
   }
-  const std::string where = path + ": header attribute '" + (toNdc ? "worldToNDC" : "worldToScreen") + "'";
+  const glm::dmat4 view = lookingDownMinusZ ? fileCamera : kFlipZ * fileCamera;
+  const std::string name = toNdc ? "worldToNDC" : "worldToScreen";
   HeaderCamera h;
-  h.camera = fromEyeToNdc(toUnit * fromImath(*projected) * glm::inverse(view), view, display, where);
-  h.attributes = std::string("worldToCamera + ") + (arnold ? "worldToNDC, Arnold's [-1, 1]"
-                                                     : toNdc ? "worldToNDC"
-                                                             : "worldToScreen");
+  h.camera = fromEyeToNdc(toUnit * fromImath(*projected) * glm::inverse(view), view, display,
+                          path + ": header attribute '" + name + "'");
+  h.attributes = "worldToCamera" + std::string(lookingDownMinusZ ? " (-z forward)" : "") + " + " + name +
+                 (yUp ? " (screen space)" : "");
   return h;
 }
 
@@ -143,27 +142,41 @@ std::optional<HeaderCamera> vrayCamera(const Imf::Header& header, const PixelBox
   HeaderCamera h;
   h.camera = fromEyeToNdc(eyeToNdc, view, display, path + ": header attribute 'cameraTransform'");
   h.attributes = "cameraTransform + cameraFov";
-  const std::optional<double> nearClip = number<Imf::FloatAttribute>(header, "cameraNearClip");
-  const std::optional<double> farClip = number<Imf::FloatAttribute>(header, "cameraFarClip");
-  if (nearClip && farClip && *nearClip > 0.0 && *farClip > *nearClip) {
-    setClipPlanes(h.camera, *nearClip, *farClip);
-    h.clipPlanesKnown = true;
-  }
   return h;
+}
+
+// Clip planes, where the header has them (the projection matrices discard z): RenderMan's
+// (ILM's PRMan OpenEXR driver writes RiClipping's near and far as clipNear/clipFar), Arnold's
+// (arnold/camera/near_clip and far_clip, in Arnold 4.2's files) and V-Ray's. A pair that is not
+// a range (V-Ray files in the wild carry cameraNearClip 0) leaves them to fitClipPlanes. Far
+// planes from 1e10 on (RenderMan's default is 1e38, Arnold's 1e30) are infinity: depth there
+// means no surface.
+void readClipPlanes(const Imf::Header& header, HeaderCamera& h) {
+  static const char* const pairs[][2] = {{"clipNear", "clipFar"},
+                                         {"arnold/camera/near_clip", "arnold/camera/far_clip"},
+                                         {"cameraNearClip", "cameraFarClip"}};
+  for (const auto& [nearName, farName] : pairs) {
+    const std::optional<double> n = number<Imf::FloatAttribute>(header, nearName);
+    const std::optional<double> f = number<Imf::FloatAttribute>(header, farName);
+    if (n && f && *n > 0.0 && *f > *n) {
+      setClipPlanes(h.camera, *n, *f < 1e10 ? *f : INFINITY);
+      h.clipPlanesKnown = true;
+      h.attributes += std::string(", ") + nearName + " + " + farName;
+      return;
+    }
+  }
 }
 
 std::optional<HeaderCamera> readCamera(const Imf::Header& header, const std::string& path) {
   const Imath::Box2i& d = header.displayWindow();
   const PixelBox display{d.min.x, d.min.y, d.max.x, d.max.y};
-  if (const Imath::M44f* toCamera = matrix(header, "worldToCamera")) {
-    std::optional<HeaderCamera> h = standardCamera(header, kFlipZ * fromImath(*toCamera), display, path);
-    if (h) {
-      validateCamera(h->camera, (path + ": header camera (" + h->attributes + ")").c_str());
-      return h;
-    }
-  }
-  std::optional<HeaderCamera> h = vrayCamera(header, display, path);
-  if (h) validateCamera(h->camera, (path + ": header camera (" + h->attributes + ")").c_str());
+  std::optional<HeaderCamera> h;
+  if (const Imath::M44f* toCamera = matrix(header, "worldToCamera"))
+    h = standardCamera(header, *toCamera, display, path);
+  if (!h) h = vrayCamera(header, display, path);
+  if (!h) return h;
+  readClipPlanes(header, *h);
+  validateCamera(h->camera, (path + ": header camera (" + h->attributes + ")").c_str());
   return h;
 }
 

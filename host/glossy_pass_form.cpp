@@ -12,14 +12,17 @@ namespace ssrcl {
 
 const char* outputFormName(OutputForm form) { return form == OutputForm::GlossyPass ? "glossy-pass" : "incident"; }
 
-void applyGlossyPassForm(Image& reflection, const GBuffer& g, const Camera& camera, float constantRoughness) {
+void applyGlossyPassForm(Image& reflection, const GBuffer& g, const Camera& camera,
+                         std::optional<float> constantRoughness) {
   const bool fromF0 = !g.f0.empty(), fromBase = !g.baseColor.empty() && !g.metallic.empty();
   if (!fromF0 && !fromBase)
     throw Error(ErrorCode::InvalidArgument,
                 "glossy-pass output form: needs an F0 pass, or base colour and metallic passes");
+  if (constantRoughness && !(*constantRoughness >= 0.0f && *constantRoughness <= 1.0f))
+    throw Error(ErrorCode::InvalidArgument, "glossy-pass output form: parameter roughness must be in [0, 1]");
   const int w = reflection.width, h = reflection.height;
   const std::size_t pixels = std::size_t(w) * h;
-  if (g.normal.data.size() != 3 * pixels || (constantRoughness < 0 && g.roughness.data.size() != pixels) ||
+  if (g.normal.data.size() != 3 * pixels || (!constantRoughness && g.roughness.data.size() != pixels) ||
       (fromF0 ? g.f0.data.size() != 3 * pixels
               : g.baseColor.data.size() != 3 * pixels || g.metallic.data.size() != pixels))
     throw Error(ErrorCode::InvalidArgument, "glossy-pass output form: the passes are not the reflection's size");
@@ -40,7 +43,7 @@ void applyGlossyPassForm(Image& reflection, const GBuffer& g, const Camera& came
       const double cosO = std::isfinite(nLength) && nLength > 0 && eyeLength > 0
                               ? glm::dot(n, toEye) / (nLength * eyeLength)
                               : 0.0;
-      const double roughness = constantRoughness >= 0 ? constantRoughness : g.roughness.data[i];
+      const double roughness = constantRoughness ? *constantRoughness : g.roughness.data[i];
       const SpecularAlbedo e = specularAlbedo(roughness, cosO);
       // An F0 pass reads as metallic 1: F0 as given, clamped to [0, 1].
       const glm::dvec3 f0 =

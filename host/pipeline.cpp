@@ -31,12 +31,13 @@ struct Pipeline::Impl {
   bool environmentChanged = false;
 
   // What the last commit planned: execute() replans when the settings differ.
-  bool committed = false;  // false again after an input or the camera changes
+  bool committed = false;  // false again after the camera, outputs or environment change
   bool configured = false;
   TraceSettings committedSettings;
   FrameShape frame;
   int colorChannels = 0;
   bool hasBase = false;
+  std::map<std::string, PipelineInputs::Shape> committedInputs;  // new images of these shapes need no commit
 
   DeviceBuffers buffers;
   SetupStage setup;
@@ -51,6 +52,7 @@ struct Pipeline::Impl {
 
   Image reflection, distance;
   StageTimes times;
+  const char* stage = "setup";  // what run() is enqueuing: an OpenCL error names it
 
   explicit Impl(const Device& d) : device(d) {}
   void plan();
@@ -87,8 +89,9 @@ void Pipeline::Impl::plan() {
   colorChannels = channels;
   hasBase = base;
   committedSettings = settings;
+  committedInputs = inputs.shapes();
 
-  setup.plan(buffers, frame, colorChannels, settings.constantRoughness < 0.0f);
+  setup.plan(buffers, frame, colorChannels, !settings.constantRoughness);
   thickness.plan(buffers, frame);
   hzb.plan(buffers, frame);
   colors.plan(buffers, frame);
@@ -105,7 +108,7 @@ void Pipeline::Impl::plan() {
   setup.bind(hzb.hzb, colors.pyramid);
   thickness.bind(setup);
   hzb.bind(d.queue);
-  colors.bind(hzb);
+  colors.bind(hzb, setup, trace);
   trace.bind(setup, hzb, colors);
   // With the filter on, the resolve writes to an intermediate the filter reads.
   resolve.bind(setup, trace, filter.enabled() ? filter.resolvedRgba : outRgba,
@@ -131,15 +134,20 @@ void Pipeline::Impl::run() {
   const CameraConstants cam(camera);
   StageEvents events;
 
-  const bool roughnessImage = s.constantRoughness < 0.0f;
+  const bool roughnessImage = !s.constantRoughness;
+  stage = "setup";
   setup.enqueue(q,
                 {inputs.pixels("color"), inputs.pixels("depth"), inputs.pixels("normal"),
                  roughnessImage ? inputs.pixels("roughness") : nullptr},
                 SetupStage::params(frame, cam, s, colorChannels), events);
   trace.upload(q, hasBase ? inputs.pixels("base") : nullptr, hasBase ? inputs.pixels("specular") : nullptr, events);
+  stage = "hzb";
   hzb.enqueue(q, events);
+  stage = "color_mips";
   colors.enqueue(q, events);
+  stage = "thickness";
   thickness.enqueue(q, s, events);
+  stage = "setup";
   const SetupStage::Counts counts = setup.readCounts(q);
   const int tiles = counts.listedTiles, batch = trace.batchSize();
   report(0.1);
@@ -152,7 +160,13 @@ void Pipeline::Impl::run() {
     traceParams.first_sample = resolveParams.first_sample = first;
     // Tiles can hold reflecting pixels with no ray of their own (strided tracing): the resolve
     // still runs, to start their sums.
-    if (counts.listedPixels > 0) trace.enqueue(q, traceParams, events);
+    stage = "trace";
+    if (counts.listedPixels > 0) {
+      trace.enqueue(q, traceParams, events);
+      stage = "color_mips";
+      colors.prefilterHits(q, traceParams, events);
+    }
+    stage = "resolve";
     resolve.accumulate(q, resolveParams, tiles, events);
     if (progress) q.finish();  // the fraction reported is work done, not work queued
     report(0.1 + 0.85 * std::min(1.0, double(first + batch) / s.samplesPerPixel));
@@ -164,8 +178,11 @@ void Pipeline::Impl::run() {
     q.enqueueFillBuffer(outDistance, 0.0f, 0, frame.pixels() * sizeof(float), nullptr, newEvent(events, "resolve"));
   }
   if (tiles > 0) resolve.finalize(q, resolveParams, tiles, events);
+  stage = "filter";
   filter.enqueue(q, s, tiles, events);
+  stage = "environment";
   environmentFill.enqueue(q, camera.view, s, events);
+  stage = "download";
   q.enqueueReadBuffer(outRgba, CL_FALSE, 0, frame.pixels() * sizeof(cl_float4), reflection.data.data(), nullptr,
                       newEvent(events, "download"));
   q.enqueueReadBuffer(outDistance, CL_FALSE, 0, frame.pixels() * sizeof(float), distance.data.data(), nullptr,
@@ -191,15 +208,10 @@ Pipeline::~Pipeline() = default;
 Pipeline::Pipeline(Pipeline&&) noexcept = default;
 Pipeline& Pipeline::operator=(Pipeline&&) noexcept = default;
 
-void Pipeline::setImage(const std::string& name, const Image& image) {
-  impl_->inputs.set(name, image);
-  impl_->committed = false;
-}
+// A new image keeps the commit: execute() checks that the inputs still have the committed shapes.
+void Pipeline::setImage(const std::string& name, const Image& image) { impl_->inputs.set(name, image); }
 
-void Pipeline::setImage(const std::string& name, const ImageView& view) {
-  impl_->inputs.set(name, view);
-  impl_->committed = false;
-}
+void Pipeline::setImage(const std::string& name, const ImageView& view) { impl_->inputs.set(name, view); }
 
 void Pipeline::setOutput(const std::string& name, const ImageView& view) {
   const int channels = name == "reflection" ? 4 : name == "distance" ? 1 : 0;
@@ -256,12 +268,18 @@ void Pipeline::commit() {
 
 void Pipeline::execute() {
   if (!impl_->committed)
-    throw Error(ErrorCode::InvalidOperation, "pipeline: execute() before commit() (or an input changed since)");
+    throw Error(ErrorCode::InvalidOperation,
+                "pipeline: execute() before commit() (or the camera, an output or the environment changed since)");
+  impl_->inputs.checkUnchanged(impl_->committedInputs);
   try {
-    if (impl_->settings != impl_->committedSettings) impl_->plan();  // settings changed after commit
+    impl_->stage = "planning";
+    if (impl_->settings != impl_->committedSettings)
+      impl_->plan();  // settings changed after commit
+    else
+      impl_->inputs.validate(impl_->camera, impl_->settings);  // an Image's data may no longer fit its shape
     impl_->run();
   } catch (const cl::Error& e) {
-    rethrowClError(e, "executing the SSR pipeline");
+    rethrowClError(e, std::string("executing the SSR pipeline (") + impl_->stage + " stage)");
   }
 }
 

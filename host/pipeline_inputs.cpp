@@ -22,6 +22,11 @@ void checkName(const std::string& name) {
                 "unknown input image '" + name + "' (expected color, depth, normal, roughness, base or specular)");
 }
 
+std::string shapeText(const PipelineInputs::Shape& s) {
+  return std::to_string(s.width) + "x" + std::to_string(s.height) + " with " + std::to_string(s.channels) +
+         (s.channels == 1 ? " channel" : " channels");
+}
+
 }  // namespace
 
 void PipelineInputs::set(const std::string& name, const Image& image) {
@@ -52,7 +57,7 @@ void PipelineInputs::validate(const Camera& camera, const TraceSettings& s) cons
   for (const InputKind& kind : kInputs) {
     const std::string name = kind.name;
     if (!has(name)) {
-      if ((name == "roughness" && s.constantRoughness >= 0.0f) || name == "base" || name == "specular") continue;
+      if ((name == "roughness" && s.constantRoughness) || name == "base" || name == "specular") continue;
       throw Error(ErrorCode::InvalidArgument, "pipeline: input image '" + name + "' not set");
     }
     const ImageView v = view(name);
@@ -68,6 +73,32 @@ void PipelineInputs::validate(const Camera& camera, const TraceSettings& s) cons
     if (source.image && source.image->data.size() != size_t(v.width) * v.height * v.channels)
       throw Error(ErrorCode::InvalidArgument,
                   "pipeline: input image '" + name + "' data size does not match its shape");
+  }
+}
+
+std::map<std::string, PipelineInputs::Shape> PipelineInputs::shapes() const {
+  std::map<std::string, Shape> result;
+  for (const auto& [name, source] : sources_)
+    if (has(name)) {
+      const ImageView v = view(name);
+      result[name] = {v.width, v.height, v.channels};
+    }
+  return result;
+}
+
+void PipelineInputs::checkUnchanged(const std::map<std::string, Shape>& committed) const {
+  const std::map<std::string, Shape> now = shapes();
+  if (now == committed) return;
+  for (const InputKind& kind : kInputs) {
+    const auto was = committed.find(kind.name), is = now.find(kind.name);
+    if (was == committed.end() && is == now.end()) continue;
+    const std::string what = "pipeline: input image '" + std::string(kind.name) + "' ";
+    const char* remedy = " since commit(); call commit() again";
+    if (was == committed.end()) throw Error(ErrorCode::InvalidOperation, what + "was set" + remedy);
+    if (is == now.end()) throw Error(ErrorCode::InvalidOperation, what + "was removed" + remedy);
+    if (!(was->second == is->second))
+      throw Error(ErrorCode::InvalidOperation,
+                  what + "changed from " + shapeText(was->second) + " to " + shapeText(is->second) + remedy);
   }
 }
 

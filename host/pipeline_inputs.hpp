@@ -22,6 +22,15 @@ class PipelineInputs {
   // Throws Error naming the image and what is wrong: a missing one, channels, size.
   void validate(const Camera& camera, const TraceSettings& s) const;
 
+  // Which inputs are set, at which size: what a commit's buffers and kernels depend on.
+  struct Shape {
+    int width = 0, height = 0, channels = 0;
+    bool operator==(const Shape& o) const { return width == o.width && height == o.height && channels == o.channels; }
+  };
+  std::map<std::string, Shape> shapes() const;
+  // Throws Error(InvalidOperation) naming the first input set, removed or resized since `committed`.
+  void checkUnchanged(const std::map<std::string, Shape>& committed) const;
+
  private:
   struct Source {
     const Image* image = nullptr;  // followed to its current content, or

@@ -46,7 +46,8 @@ void validateSettings(const TraceSettings& s) {
     throw Error(ErrorCode::InvalidArgument, "parameter environment-intensity must be in [0, 1e6]");
   if (!std::isfinite(s.environmentRotation))
     throw Error(ErrorCode::InvalidArgument, "parameter environment-rotation must be a finite number of degrees");
-  if (std::isnan(s.constantRoughness)) throw Error(ErrorCode::InvalidArgument, "parameter roughness is NaN");
+  if (s.constantRoughness && !(*s.constantRoughness >= 0.0f && *s.constantRoughness <= 1.0f))
+    throw Error(ErrorCode::InvalidArgument, "parameter roughness must be in [0, 1]");
   if (s.samplesPerPixel < 1 || s.samplesPerPixel > 65536)
     throw Error(ErrorCode::InvalidArgument, "parameter spp must be in [1, 65536]");
   if (!(s.fullRaysRoughness >= 0.0f && s.fullRaysRoughness <= 1.0f))

@@ -40,7 +40,7 @@ SetupParams SetupStage::params(const FrameShape& frame, const CameraConstants& c
   p.near_plane = camera.nearPlane;
   p.far_plane = camera.farPlane;
   p.color_channels = colorChannels;
-  p.constant_roughness = s.constantRoughness < 0.0f ? -1.0f : s.constantRoughness;
+  p.constant_roughness = s.constantRoughness.value_or(-1.0f);  // the kernel's "unset"
   p.max_roughness = s.maxRoughness;
   p.mirror_roughness = s.mirrorRoughness;
   p.samples_per_pixel = s.samplesPerPixel;

@@ -15,7 +15,8 @@ const char* tracerDefine(Tracer t) {
 }
 
 // Ray records of all samples when they fit in this budget, else fewer samples per batch (the
-// resolve accumulates across batches, so the result is the same).
+// resolve accumulates across batches; prefiltered hits are weighted by their own batch's hits,
+// kernels/hit_prefilter.cl).
 constexpr size_t kRayRecordBudget = size_t(512) << 20;
 
 }  // namespace

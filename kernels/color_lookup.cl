@@ -24,9 +24,10 @@ inline float4 pyramid_bilinear(__global const float4* pyramid, __global const Hz
   return mix(mix(t00, t01, f.x), mix(t10, t11, f.x), f.y);
 }
 
-// Trilinear lookup at a fractional level of detail, coverage divided out: the mean colour of
-// the surfaces in the footprint. (Counting the sky's share as missed would be biased: rays that
-// miss near a surface get no lookup to add theirs back.)
+// Trilinear lookup at a fractional level of detail, weights divided out: the mean colour of the
+// surfaces in the footprint, each texel weighted by 1 + the hits that landed on it
+// (hit_prefilter.cl). (Counting the sky's share as missed would be biased: rays that miss near a
+// surface get no lookup to add theirs back.)
 inline float4 pyramid_sample(__global const float4* pyramid, __global const HzbLevel* levels, int level_count,
                              float2 pixel, float lod) {
   lod = clamp(lod, 0.0f, (float)(level_count - 1));

@@ -1,9 +1,9 @@
 // Colour pyramid for prefiltered lookups of rough reflections. Same level geometry as the HZB
 // (each level ceil(previous / 2)); a coarse texel is the mean of the fine texels under it.
-// Level 0 is the screen colour with a weight in w (setup.cl: 1 on surfaces that rays collect, 0
-// on sky and specular pixels), kept unweighted for full-resolution reads; coarser texels are
-// (rgb * weight, weight), so lookups divide by w and average the weighted surfaces only
-// (weighted_texel and the lookups are in color_lookup.cl).
+// Level 0 is the screen colour with a weight in w (setup.cl writes 1 on surfaces that rays
+// collect, 0 on sky and specular pixels; hit_prefilter.cl adds each batch's hits), kept unweighted
+// for full-resolution reads; coarser texels are (rgb * weight, weight), so lookups divide by w
+// and average the weighted surfaces only (weighted_texel and the lookups are in color_lookup.cl).
 
 __kernel void color_reduce(__global float4* pyramid, __global const HzbLevel* levels, int dst_level) {
   int x = get_global_id(0), y = get_global_id(1);

@@ -65,10 +65,10 @@ __kernel void setup(SetupParams params, __global const float* color_in,
     r = isnan(r) ? 1.0f : clamp(r, 0.0f, 1.0f);
 
     // Colour (not premultiplied) with, in w, the weight prefiltered lookups give the pixel
-    // (kernels/color_pyramid.cl): 0 on sky, which rays never hit, and on specular pixels, whose
-    // screen colour is what they reflect toward the camera and whose plane the rays leaving a
-    // reflector cannot hit: averaged in, an emitter's light spread onto them and no ray collected
-    // it (tabletop_cm, docs/BENCHMARKS.md "Speckle").
+    // (kernels/hit_prefilter.cl adds each batch's hits to the 1): 0 on sky, which rays never hit,
+    // and on specular pixels, whose screen colour is what they reflect toward the camera and whose
+    // plane the rays leaving a reflector cannot hit: averaged in, an emitter's light spread onto
+    // them and no ray collected it (tabletop_cm, docs/BENCHMARKS.md "Speckle").
     __global const float* c = color_in + (size_t)i * color_channels;
     color_out[i] = surface ? (float4)(sanitize_radiance(c[0]), sanitize_radiance(c[1]), sanitize_radiance(c[2]),
                                       specular_pixel(r) ? 0.0f : 1.0f)

@@ -280,13 +280,15 @@ __kernel void trace_rays(TraceParams params, __global const float* hzb, __global
   float3 hit = ray_point(&ray, t);
   float4 radiance;
   cell = clamp(cell, (int2)(0, 0), size - 1);
-  if (params.cone_scale > 0.0f && !mirror && !specular_pixel(normals[cell.y * size.x + cell.x].w)) {
-    // Prefiltered lookup: the mip whose texels match the footprint of this ray's share of the
+  bool prefiltered = params.cone_scale > 0.0f && !mirror && !specular_pixel(normals[cell.y * size.x + cell.x].w);
+  if (prefiltered) {
+    // Prefiltered hit, looked up once the batch's hits are counted (hit_prefilter.cl): recorded as
+    // the screen position and the mip whose texels match the footprint of this ray's share of the
     // lobe (a cone of tangent alpha * cone_scale) at the hit distance. A hit on a specular pixel
     // (which the pyramid leaves out, setup.cl) reads its own colour.
     float px_per_unit = 0.5f * (float)size.y * fabs(proj.s5) * ray_q(&ray, t).w;
     float footprint = 2.0f * length(hit - p) * alpha * params.cone_scale * px_per_unit;
-    radiance = pyramid_sample(color_pyramid, levels, level_count, s, log2(fmax(footprint, 1.0f)));
+    radiance = (float4)(s, -1.0f - log2(fmax(footprint, 1.0f)), 0.0f);
   } else {
     radiance = color_pyramid[cell.y * size.x + cell.x];
   }
@@ -298,7 +300,7 @@ __kernel void trace_rays(TraceParams params, __global const float* hzb, __global
   // colour 0 and keeps its base: its screen colour.
   int q = cell.y * size.x + cell.x;
   float4 nq = normals[q];
-  if (params.has_base && nq.w < params.glossy_hit_roughness) {
+  if (!prefiltered && params.has_base && nq.w < params.glossy_hit_roughness) {
     float alpha_q = fmax(roughness_to_alpha(nq.w, SSRCL_ROUGHNESS_MAPPING), 1e-4f);
     float pdf2;
     float3 dir2 = sample_reflection(-dir, nq.xyz, nq.w <= mirror_roughness, alpha_q, sample_2d(q, sample, seed + 1u),

@@ -24,7 +24,7 @@ py::object passView(py::object frame) {
 }
 
 Frame loadFrame(const std::string& path, const std::string& camera, const std::string& renderer,
-                const std::string& depthKind, const std::string& normalSpace, float roughness,
+                const std::string& depthKind, const std::string& normalSpace, std::optional<float> roughness,
                 const std::string& roughnessChannel, const std::string& position, bool glossyPasses, bool inputCheck,
                 const std::string& outputForm, const std::string& f0Channels, const std::string& baseColorChannels,
                 const std::string& metallicChannel, const std::string& materialFile) {
@@ -69,14 +69,14 @@ void bindIo(py::module_& m) {
       .def_property_readonly("cameraSource", [](const Frame& f) { return f.cameraSource; });
 
   m.def("loadFrame", &loadFrame, py::arg("path"), py::arg("camera") = "", py::arg("renderer") = "blender",
-        py::arg("depthKind") = "", py::arg("normalSpace") = "", py::arg("roughness") = -1.0f,
+        py::arg("depthKind") = "", py::arg("normalSpace") = "", py::arg("roughness") = py::none(),
         py::arg("roughnessChannel") = "", py::arg("position") = "", py::arg("glossyPasses") = true,
         py::arg("inputCheck") = true, py::arg("outputForm") = "incident", py::arg("f0Channels") = "",
         py::arg("baseColorChannels") = "", py::arg("metallicChannel") = "", py::arg("materialFile") = "",
         py::call_guard<py::gil_scoped_release>(),
         "Reads a G-buffer EXR and its camera as `ssrcl trace` does: the camera JSON `camera`, by default "
         "<stem>.camera.json beside the EXR or else the EXR header's camera; the renderer preset's channel names "
-        "and conventions (depthKind, normalSpace override them); roughness >= 0 replaces the roughness channel; "
+        "and conventions (depthKind, normalSpace override them); roughness (a number, as TraceSettings.constantRoughness) replaces the roughness channel; "
         "position names world-position channels to use instead of depth; runs the input check unless "
         "inputCheck=False. outputForm='glossy-pass' also reads the material passes applyGlossyPassForm needs "
         "(f0Channels, or baseColorChannels + metallicChannel, by default Blender AOVs base_color and metallic; "
@@ -84,16 +84,16 @@ void bindIo(py::module_& m) {
 
   m.def(
       "applyGlossyPassForm",
-      [](const FloatArray& rgba, const Frame& frame, float constantRoughness) {
+      [](const FloatArray& rgba, const Frame& frame, std::optional<float> constantRoughness) {
         auto* pass = new Image(imageFromArray(rgba, "rgba"));
         py::capsule owner(pass, [](void* p) { delete static_cast<Image*>(p); });
         applyGlossyPassForm(*pass, frame.gbuffer, frame.camera, constantRoughness);
         return arrayView(*pass, owner);
       },
-      py::arg("rgba"), py::arg("frame"), py::arg("constantRoughness") = -1.0f,
+      py::arg("rgba"), py::arg("frame"), py::arg("constantRoughness") = py::none(),
       "The reflection pass in the glossy-pass form (`--output-form glossy-pass`): rgb times the specular lobe's "
       "albedo E(view, roughness, F0), A unchanged, as a new array; `frame` from loadFrame(..., "
-      "outputForm='glossy-pass'); constantRoughness >= 0 as the pipeline's.");
+      "outputForm='glossy-pass'); constantRoughness (None: the roughness pass) as the pipeline's.");
 
   m.def("writeReflectionExr", &writeExr, py::arg("path"), py::arg("rgba"), py::arg("distance"), py::arg("layer") = "",
         py::arg("half") = false, py::arg("compression") = "", py::arg("appendTo") = "", py::arg("headerFrom") = "",

@@ -24,9 +24,8 @@ class PythonPipeline {
 
   // `keeper` keeps the pixels `view` points at alive until they are replaced.
   void setImage(const std::string& name, const ImageView& view, std::shared_ptr<const void> keeper) {
-    pipeline_->setImage(name, view);  // validates the name first
+    pipeline_->setImage(name, view);  // validates the name first; the commit stands (the C++ rule)
     inputs_[name] = {view, std::move(keeper)};
-    committed_ = false;
   }
 
   void setCamera(const Camera& camera) {
@@ -50,10 +49,18 @@ class PythonPipeline {
     pipeline_->settings() = settings_;
     pipeline_->commit();
     committed_ = true;
+    committedInputs_ = inputs_;
   }
 
   void execute() {
-    if (leaveViews() && committed_) pipeline_->commit();  // the fresh pipeline, as the old one was
+    if (leaveViews() && committed_) {
+      // The fresh pipeline committed as the old one was, then given the images set since: its
+      // execute() accepts or refuses them as the old one's would.
+      for (const auto& [name, input] : committedInputs_) pipeline_->setImage(name, input.view);
+      pipeline_->settings() = settings_;
+      pipeline_->commit();
+      for (const auto& [name, input] : inputs_) pipeline_->setImage(name, input.view);
+    }
     pipeline_->settings() = settings_;
     pipeline_->execute();
   }
@@ -85,7 +92,7 @@ class PythonPipeline {
     ImageView view;
     std::shared_ptr<const void> keeper;
   };
-  std::map<std::string, Input> inputs_;
+  std::map<std::string, Input> inputs_, committedInputs_;  // the latter alive until the next commit
   std::optional<Camera> camera_;
   std::shared_ptr<const EnvironmentMap> environment_;
   TraceSettings settings_;

@@ -9,7 +9,7 @@
 #include <limits>
 #include <stdexcept>
 
-namespace ssrcl::test {
+namespace ssrcl::scenes {
 namespace {
 
 using glm::dvec3;
@@ -356,4 +356,4 @@ MirrorTruth exactMirrorReflection(const Scene& scene, const Camera& camera, cons
   return t;
 }
 
-}  // namespace ssrcl::test
+}  // namespace ssrcl::scenes

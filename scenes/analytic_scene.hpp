@@ -1,5 +1,6 @@
 #pragma once
-// Analytic scenes for testing SSR against exact ray-traced truth, all in double precision.
+// Analytic scenes, exact ray-traced G-buffers and reflections in double precision: the generated
+// inputs of `ssrcl bench` and the truth of the tests.
 //
 // Conventions: world up is +Y (glm::lookAt's default), so floors are planes y = const.
 // The camera follows ssrcl/camera.hpp: pixel (x, y) centre is (x + 0.5, y + 0.5), y = 0 the top
@@ -14,7 +15,7 @@
 #include "ssrcl/image.hpp"
 #include "ssrcl/io.hpp"
 
-namespace ssrcl::test {
+namespace ssrcl::scenes {
 
 inline constexpr double kSkyDepth = 1e10;
 
@@ -148,4 +149,9 @@ struct MirrorTruth {
 // reflectAt() for every pixel of `gbuffer` (rendered from the same scene and camera).
 MirrorTruth exactMirrorReflection(const Scene& scene, const Camera& camera, const AnalyticGBuffer& gbuffer);
 
+}  // namespace ssrcl::scenes
+
+// The tests reach the scenes among their other helpers in ssrcl::test.
+namespace ssrcl::test {
+using namespace ssrcl::scenes;
 }  // namespace ssrcl::test

@@ -27,15 +27,20 @@ done
 MUTANT_KERNELS="$BUILD/mutant-kernels"
 LOG="$BUILD/mutation-logs"
 
-# Test sets: "executable:gtest-filter" entries, run in order until one fails. test_ggx_sampler is
-# not among them: it compiles ggx.cl and sequence.cl into the host from kernels/ itself, so it
-# never sees a mutant.
+# Test sets: "executable:gtest-filter" entries, run in order until one fails. test_ggx_sampler
+# compiles ggx.cl and sequence.cl into the host from SSRCL_KERNEL_SOURCE_DIR too, so it sees them.
 MIRROR="test_mirror_analytic:*MatchesExactReflections*"
 DIFFERENTIAL="test_differential:*"
 GLOSSY_FAST="test_glossy_analytic:*FastPathBiasAndError*"
 GLOSSY="test_glossy_analytic:*GlossySsr*"
 HZB="test_hzb:*"
 EDGE="test_mirror_analytic:*EdgeFade*"
+SAMPLER="test_ggx_sampler:*"
+HIGH="test_glossy_analytic:*HighPreset*"
+DRAFT="test_glossy_analytic:*DraftStrideTwo*"
+LINEAR_MAPPING="test_glossy_analytic:*LinearRoughnessMapping*"
+THICKNESS="test_differential:*NonDefaultThickness*"
+CREASE="test_glossy_analytic:*Crease*"
 
 # name | fast (1 = in the CI subset) | kernel file | exact pattern | replacement | tests
 MUTANTS=(
@@ -51,6 +56,12 @@ MUTANTS=(
   "reuse_weight_uniform|0|resolve.cl|float w = ggx_brdf_cos(ol, ll, alpha) / rad.w;|float w = 1.0f;|$GLOSSY_FAST $GLOSSY"
   "sequence_rotation_off|0|sequence.cl|float2 u = r2 + shift;|float2 u = r2;|$GLOSSY_FAST $GLOSSY"
   "mirror_direction_flipped|0|trace.cl|if (mirror) return 2.0f * dot(o, n) * n - o;|if (mirror) return o - 2.0f * dot(o, n) * n;|$MIRROR"
+  "vndf_radius_linear|0|ggx.cl|float r = sqrt(u.x);|float r = u.x;|$SAMPLER $GLOSSY_FAST"
+  "linear_mapping_squared|0|ggx.cl|return mapping == SSRCL_ROUGHNESS_LINEAR ? roughness : roughness * roughness;|return roughness * roughness;|$LINEAR_MAPPING"
+  "filter_off|0|filter.cl|out_rgba[i] = filtered.w > 0.0f ? filtered : (float4)(0.0f);|out_rgba[i] = in_rgba[i];|$HIGH"
+  "strided_pixels_unresolved|0|setup.cl|: strided_out              ? -1|: strided_out              ? 0|$DRAFT"
+  "constant_thickness_ignored|0|setup.cl|: params.thickness_rel * d * along_normal;|: 0.002f * d * along_normal;|$THICKNESS"
+  "neighbour_normal_check_off|0|resolve.cl|&& dot(n_p, n_q) >= 0.9f|/* mutant */|$CREASE"
 )
 
 echo "== building the test executables against mutable kernels in $BUILD"
@@ -61,7 +72,7 @@ targets() {
   local t
   for t in $1; do echo "--target ${t%%:*}"; done | sort -u
 }
-ALL_TESTS="$MIRROR $DIFFERENTIAL $GLOSSY $HZB $EDGE"
+ALL_TESTS="$MIRROR $DIFFERENTIAL $GLOSSY $HZB $EDGE $SAMPLER $HIGH $DRAFT $LINEAR_MAPPING $THICKNESS $CREASE"
 # shellcheck disable=SC2046
 cmake --build "$BUILD" -j"$(nproc)" $(targets "$ALL_TESTS") >"$LOG/build.log" || {
   tail -30 "$LOG/build.log"; echo "mutation-check: the unmutated build failed" >&2; exit 2; }

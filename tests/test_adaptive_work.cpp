@@ -6,8 +6,8 @@
 #include <cmath>
 #include <set>
 
-#include "scenes/analytic_scene.hpp"
 #include "ssrcl/ssrcl.hpp"
+#include "support/analytic_frame.hpp"
 #include "support/test_device.hpp"
 
 namespace {
@@ -15,29 +15,13 @@ namespace {
 using ssrcl::Image;
 using ssrcl::TraceSettings;
 
-ssrcl::Device& device() {
-  static ssrcl::Device d = ssrcl::test::testDevice();
-  return d;
-}
-
-struct Frame {
-  ssrcl::Camera camera;
-  ssrcl::GBuffer g;
-};
-
-Frame render(const std::string& name, int width, int height) {
-  const ssrcl::test::Scene scene = ssrcl::test::makeScene(name);
-  Frame f;
-  f.camera = ssrcl::test::makeCamera(scene.view, width, height);
-  ssrcl::test::AnalyticGBuffer g = ssrcl::test::renderGBuffer(scene, f.camera);
-  f.g = static_cast<ssrcl::GBuffer&>(g);
-  return f;
-}
+using Frame = ssrcl::test::AnalyticFrame;
+using ssrcl::test::sharedTestDevice;
 
 // The half-sky scene with roughness varying over the frame (a value per pixel that is never on a
 // ray-count boundary of the rule under test), so sky, too-rough, mirror and glossy pixels all occur.
 Frame halfSky(int width, int height) {
-  Frame f = render("half_sky", width, height);
+  Frame f = ssrcl::test::renderAnalyticFrame("half_sky", width, height);
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
       // Mirror-like on the left tenth, then a ramp across the frame.
@@ -53,16 +37,12 @@ struct Output {
 };
 
 Output run(ssrcl::Pipeline& p, const Frame& f, const TraceSettings& s) {
-  p.setGBuffer(f.g);
-  p.setCamera(f.camera);
-  p.settings() = s;
-  p.commit();
-  p.execute();
+  ssrcl::test::runFrame(p, f, s);
   return {p.output("reflection"), p.output("distance"), p.stageTimes()};
 }
 
 Output run(const Frame& f, const TraceSettings& s) {
-  ssrcl::Pipeline p(device());
+  ssrcl::Pipeline p(sharedTestDevice());
   return run(p, f, s);
 }
 
@@ -133,9 +113,9 @@ TEST(Classification, ListsExactlyTheTilesThatReflect) {
 // A pipeline reused for another frame must not keep the last frame's reflections in tiles the new
 // frame does not resolve.
 TEST(Classification, ReusedPipelineClearsUnlistedTiles) {
-  const Frame sky = halfSky(200, 120), full = render("spheres_on_mirror", 200, 120);
+  const Frame sky = halfSky(200, 120), full = ssrcl::test::renderAnalyticFrame("spheres_on_mirror", 200, 120);
   const TraceSettings s = ssrcl::qualityPreset("medium");
-  ssrcl::Pipeline p(device());
+  ssrcl::Pipeline p(sharedTestDevice());
   const Output first = run(p, full, s);
   const Output second = run(p, sky, s);
   const Output fresh = run(sky, s);

@@ -1,6 +1,6 @@
-// `ssrcl batch` as a user runs it on a generated shot: outputs identical to `ssrcl trace`,
-// resumable, bad frames reported and skipped, a JSON report, shards, and Ctrl-C leaving nothing
-// half-written.
+// `ssrcl batch` as a user runs it on a generated shot: outputs identical to `ssrcl trace` and
+// matching exact reflections, resumable, bad frames reported and skipped, a JSON report, shards,
+// and Ctrl-C leaving nothing half-written.
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
@@ -10,12 +10,14 @@
 
 #include <chrono>
 #include <filesystem>
+#include <iostream>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <thread>
 
 #include "support/analytic_sequence.hpp"
 #include "support/exr_fixtures.hpp"
+#include "support/mirror_pass_match.hpp"
 #include "support/run_command.hpp"
 #include "support/temp_dir.hpp"
 
@@ -81,6 +83,32 @@ TEST_F(Batch, OutputsAreBitIdenticalToTrace) {
     EXPECT_EQ(ssrcl::test::readBytes(output(f)), ssrcl::test::readBytes(traced)) << "frame " << f;
   }
   EXPECT_TRUE(hiddenFiles(outDir).empty());
+}
+
+// The test above compares batch with `ssrcl trace`, i.e. with itself. Against independent truth: a
+// mirror shot's frames, each seen by its own camera (10 degrees apart), match their own exact
+// reflections, and another frame's camera does not fit them.
+TEST_F(Batch, MirrorFramesMatchTheirOwnExactReflections) {
+  ssrcl::test::AnalyticSequence s;
+  s.directory = dir.file("mirror");
+  s.frameCount = 3;
+  s.width = 160;
+  s.height = 90;
+  s.degreesPerFrame = 10.0;
+  auto r = runCommand(cli("batch " + shellQuote(ssrcl::test::writeAnalyticSequence(s)) + " -o " +
+                          shellQuote(outDir + "/") + " --edge-fade 0"));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const ssrcl::test::Scene scene = ssrcl::test::sequenceScene(s);
+  for (int i = 0; i < s.frameCount; ++i) {
+    const auto m = ssrcl::test::matchExactReflections(output(1001 + i), scene, ssrcl::test::sequenceCamera(s, i));
+    std::cout << "frame " << 1001 + i << ": visible hits matched " << m.visibleRate() << " of " << m.visible
+              << ", misses " << m.missedRate() << " of " << m.missed << "\n";
+    EXPECT_GE(m.visibleRate(), ssrcl::test::kMirrorPassFloor) << "frame " << 1001 + i;
+    EXPECT_GE(m.missedRate(), ssrcl::test::kMirrorPassFloor) << "frame " << 1001 + i;
+  }
+  const auto wrongCamera = ssrcl::test::matchExactReflections(output(1003), scene, ssrcl::test::sequenceCamera(s, 0));
+  std::cout << "frame 1003 against frame 1001's truth: " << wrongCamera.visibleRate() << "\n";
+  EXPECT_LT(wrongCamera.visibleRate(), 0.8);
 }
 
 TEST_F(Batch, SkipsExistingOutputsUnlessOverwrite) {

@@ -20,7 +20,7 @@ ssrcl::Image loadRgb(const std::string& channels) {
   ssrcl::GBufferSource s;
   s.file = kSample;
   s.colorChannels = channels;
-  s.constantRoughness = 0.0f;
+  s.readRoughness = false;
   return ssrcl::loadGBuffer(s).color;
 }
 

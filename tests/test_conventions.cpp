@@ -118,27 +118,24 @@ Imath::M44f imath(const glm::dmat4& columnVectorMatrix) {
   return m;
 }
 
-// How a renderer lays out its projected header matrix: OpenEXR's worldToNDC, (0,0) top-left to
-// (1,1) bottom-right; worldToScreen in RenderMan's screen space; Arnold's worldToNDC, [-1, 1] y up
-// with arnold/* attributes beside it (as Arnold 4.2 writes it: see ArnoldFileHeaderCamera).
-enum class Projected { StandardNdc, Screen, ArnoldNdc };
+// How a renderer lays out its header camera: OpenEXR's worldToNDC, (0,0) top-left to (1,1)
+// bottom-right; worldToScreen in OpenImageIO's screen space, [-1, 1] y up; that screen space under
+// the name worldToNDC with arnold/* attributes beside it (as Arnold 4.2 writes it through
+// OpenImageIO before 2.2: see ArnoldFileHeaderCamera); and Houdini's, screen space as worldToNDC
+// with a worldToCamera looking down -z (see HoudiniHeaderCamera). All but Houdini's worldToCamera
+// look down +z.
+enum class Projected { StandardNdc, Screen, ArnoldNdc, Houdini };
 
-// OpenEXR's definitions, checked with Imath's own arithmetic on the sample's surface points:
-// worldToCamera gives +z forward camera space, worldToNDC (0,0) top-left to (1,1) bottom-right.
+// The layouts' definitions, checked with Imath's own arithmetic on the sample's surface points.
 // `display` is the display window in the sample's pixel coordinates, `c` its camera.
 void addStandardCamera(Imf::Header& header, const Sample& s, Projected layout, const ssrcl::Camera& c,
                        const Imath::Box2i& display) {
-  const bool screen = layout == Projected::Screen;
-  const glm::dmat4 flipZ = glm::scale(glm::dmat4(1.0), glm::dvec3(1, 1, -1));
+  const bool houdini = layout == Projected::Houdini;
+  const glm::dmat4 flipZ = glm::scale(glm::dmat4(1.0), glm::dvec3(1, 1, houdini ? 1 : -1));
   const glm::dmat4 toCamera = flipZ * c.view;
-  glm::dmat4 toUnit(1.0);  // clip to homogeneous NDC [0,1], y down; RenderMan screen space; Arnold's clip x, y
-  if (screen) {
-    toUnit[0][0] = double(c.width) / c.height;
-  } else if (layout == Projected::StandardNdc) {
-    toUnit = glm::dmat4(0.5, 0, 0, 0, 0, -0.5, 0, 0, 0, 0, 1, 0, 0.5, 0.5, 0, 1);
-  } else {
-    header.insert("arnold/version", Imf::StringAttribute("Arnold 4.2.16.2"));
-  }
+  glm::dmat4 toUnit(1.0);  // clip to homogeneous NDC [0,1], y down; screen space is clip x, y
+  if (layout == Projected::StandardNdc) toUnit = glm::dmat4(0.5, 0, 0, 0, 0, -0.5, 0, 0, 0, 0, 1, 0, 0.5, 0.5, 0, 1);
+  if (layout == Projected::ArnoldNdc) header.insert("arnold/version", Imf::StringAttribute("Arnold 4.2.16.2"));
   const Imath::M44f camera = imath(toCamera), projected = imath(toUnit * c.projection * c.view);
   for (int i = 0; i < s.w * s.h; i += 997) {
     if (s.sky(i)) continue;
@@ -147,18 +144,23 @@ void addStandardCamera(Imf::Header& header, const Sample& s, Projected layout, c
     Imath::V3f inCamera, n;
     camera.multVecMatrix(Imath::V3f(float(world.x), float(world.y), float(world.z)), inCamera);
     projected.multVecMatrix(Imath::V3f(float(world.x), float(world.y), float(world.z)), n);
-    EXPECT_NEAR(inCamera.z, -eye.z, 1e-3 * std::abs(eye.z));
+    EXPECT_NEAR(inCamera.z, houdini ? eye.z : -eye.z, 1e-3 * std::abs(eye.z));
     if (layout == Projected::StandardNdc) {
       EXPECT_NEAR(n.x * c.width + display.min.x, i % s.w + 0.5, 1e-2);
       EXPECT_NEAR(n.y * c.height + display.min.y, i / s.w + 0.5, 1e-2);
-    }
-    if (layout == Projected::ArnoldNdc) {
+    } else {
       EXPECT_NEAR((n.x + 1) / 2 * c.width + display.min.x, i % s.w + 0.5, 1e-2);
       EXPECT_NEAR((1 - n.y) / 2 * c.height + display.min.y, i / s.w + 0.5, 1e-2);
     }
   }
   header.insert("worldToCamera", Imf::M44fAttribute(camera));
-  header.insert(screen ? "worldToScreen" : "worldToNDC", Imf::M44fAttribute(projected));
+  header.insert(layout == Projected::Screen ? "worldToScreen" : "worldToNDC", Imf::M44fAttribute(projected));
+}
+
+// Clip-plane attributes under a renderer's names, here the sample's own planes.
+void addClipPlanes(Imf::Header& header, const char* nearName, const char* farName, double n, double f) {
+  header.insert(nearName, Imf::FloatAttribute(float(n)));
+  header.insert(farName, Imf::FloatAttribute(float(f)));
 }
 
 // V-Ray: camera-to-world and the horizontal field of view in degrees; the samples' frusta are
@@ -243,12 +245,15 @@ class Conventions : public testing::TestWithParam<const char*> {
   }
 
   // Arnold's channel names (R,G,B, Z, N.X,N.Y,N.Z) with `depth` as Z, world normals, and the
-  // sample's camera in the header in `layout`.
-  std::string arnoldNamedVariant(const std::string& tag, Projected layout, const std::vector<float>& depth) {
+  // sample's camera in the header in `layout`, with Arnold's clip-plane attributes if `clip`.
+  std::string arnoldNamedVariant(const std::string& tag, Projected layout, const std::vector<float>& depth,
+                                 bool clip = false) {
     const Sample& s = sample();
     ExrOptions options;
     options.editHeader = [&](Imf::Header& h) {
       addStandardCamera(h, s, layout, s.camera, Imath::Box2i({0, 0}, {s.w - 1, s.h - 1}));
+      if (clip)
+        addClipPlanes(h, "arnold/camera/near_clip", "arnold/camera/far_clip", s.camera.nearPlane, s.camera.farPlane);
     };
     return variant(tag,
                    baseChannels(s, "", "roughness") + std::vector<ExrChannel>{{"Z", depth}} + worldNormals(s, "N."),
@@ -274,7 +279,9 @@ class Conventions : public testing::TestWithParam<const char*> {
       EXPECT_EQ(b.displayWindow, *display);
       EXPECT_EQ(b.dataWindow, Imath::Box2i({0, 0}, {s.w - 1, s.h - 1}));
     }
-    // Conversions round in float: a ray may land a pixel away here and there.
+    // Conversions round in float: a ray may land a pixel away here and there, and with prefiltered
+    // hits (kernels/hit_prefilter.cl) that also moves its footprint's weights: measured up to 0.16%
+    // of values off (the glossy sample's overscan variant), so the bound is 0.2%.
     long long off = 0, pixels = 0;
     double sum = 0.0;
     for (const char* c : {"R", "G", "B", "A", "distance"}) {
@@ -285,7 +292,7 @@ class Conventions : public testing::TestWithParam<const char*> {
         ++pixels;
       }
     }
-    EXPECT_LE(off, pixels / 1000) << out;
+    EXPECT_LE(off, pixels / 500) << out;
     EXPECT_LT(sum / pixels, 2e-5) << out;
   }
 
@@ -340,20 +347,31 @@ TEST_P(Conventions, PositionsCheckedAgainstDepth) {
 }
 
 // RenderMan's conventions: planar Z (its OpenEXR driver names output variable z "Z"), camera-space Nn
-// (+z forward), worldToCamera + worldToNDC.
+// (+z forward), worldToCamera + worldToNDC, clipNear + clipFar (used instead of fitted planes). A
+// near plane beyond the nearest surface is not this render's camera: refused.
 TEST_P(Conventions, RenderManPresetWithHeaderCamera) {
   const Sample& s = sample();
-  ExrOptions options;
-  options.editHeader = [&](Imf::Header& h) {
-    addStandardCamera(h, s, Projected::StandardNdc, s.camera, Imath::Box2i({0, 0}, {s.w - 1, s.h - 1}));
-  };
-  const std::string in = variant("renderman",
-                                 baseChannels(s, "", "roughness") +
-                                     std::vector<ExrChannel>{{"Z", s.channel(s.g.depth, 0)}} +
-                                     cameraNormals(s, "Nn.", "xyz", true),
-                                 options);
-  expectSameAsOriginal(in, "--renderer renderman");
-  expectRefused(in, "--renderer renderman --normal-space world", "normal pass", "--normal-space camera");
+  const auto channels = baseChannels(s, "", "roughness") + std::vector<ExrChannel>{{"Z", s.channel(s.g.depth, 0)}} +
+                        cameraNormals(s, "Nn.", "xyz", true);
+  double nearestSurface = INFINITY;
+  for (int i = 0; i < s.w * s.h; ++i)
+    if (!s.sky(i)) nearestSurface = std::min(nearestSurface, double(s.g.depth.data[i]));
+  for (const double nearPlane : {s.camera.nearPlane, 2.0 * nearestSurface}) {
+    ExrOptions options;
+    options.editHeader = [&](Imf::Header& h) {
+      addStandardCamera(h, s, Projected::StandardNdc, s.camera, Imath::Box2i({0, 0}, {s.w - 1, s.h - 1}));
+      addClipPlanes(h, "clipNear", "clipFar", nearPlane, s.camera.farPlane);
+    };
+    const bool right = nearPlane == s.camera.nearPlane;
+    const std::string in = variant(right ? "renderman" : "renderman-near", channels, options);
+    if (right) {
+      expectSameAsOriginal(in, "--renderer renderman");
+      expectRefused(in, "--renderer renderman --normal-space world", "normal pass", "--normal-space camera");
+    } else {
+      expectRefused(in, "--renderer renderman",
+                    "renderman-near.exr: the header camera (worldToCamera + worldToNDC, clipNear + clipFar)", "--camera");
+    }
+  }
 }
 
 // Arnold's, as its files hold them (ArnoldFileHeaderCamera): planar Z, world N, worldToCamera +
@@ -361,16 +379,33 @@ TEST_P(Conventions, RenderManPresetWithHeaderCamera) {
 // otherwise: that reading is refused.
 TEST_P(Conventions, ArnoldPresetWithArnoldHeader) {
   const Sample& s = sample();
-  const std::string in = arnoldNamedVariant("arnold", Projected::ArnoldNdc, s.channel(s.g.depth, 0));
+  const std::string in = arnoldNamedVariant("arnold", Projected::ArnoldNdc, s.channel(s.g.depth, 0), true);
   expectSameAsOriginal(in, "--renderer arnold");
   expectRefused(in, "--renderer arnold --depth-kind radial", "depth pass", "--depth-kind planar");
 }
 
-// Radial depth with worldToCamera + worldToScreen (read in RenderMan's screen space).
+// Radial depth with worldToCamera + worldToScreen (OpenImageIO's screen space, as Arnold writes it
+// through OpenImageIO 2.2 and later; the samples are 16:9, so an aspect-scaled reading fails).
 TEST_P(Conventions, RadialDepthWithScreenMatrix) {
   const std::string in = arnoldNamedVariant("screen", Projected::Screen, radialDepth(sample()));
   expectSameAsOriginal(in, "--renderer arnold --depth-kind radial");
   expectRefused(in, "--renderer arnold", "depth pass", "--depth-kind radial");
+}
+
+// Houdini's header camera (HoudiniHeaderCamera) with a Blender-named G-buffer: told from the
+// matrices, it reads as the render's camera.
+TEST_P(Conventions, HoudiniHeaderLayout) {
+  const Sample& s = sample();
+  ExrOptions options;
+  options.editHeader = [&](Imf::Header& h) {
+    addStandardCamera(h, s, Projected::Houdini, s.camera, Imath::Box2i({0, 0}, {s.w - 1, s.h - 1}));
+  };
+  expectSameAsOriginal(variant("houdini",
+                               baseChannels(s, kBlender + "Combined.", kBlender + "roughness.X") +
+                                   std::vector<ExrChannel>{{kBlender + "Depth.Z", s.channel(s.g.depth, 0)}} +
+                                   worldNormals(s, kBlender + "Normal."),
+                               options),
+                       "");
 }
 
 // V-Ray's: planar Z, camera-space normals (-z forward), cameraTransform + cameraFov.
@@ -546,8 +581,8 @@ TEST(ConventionCheck, CorpusScenes) {
 }
 
 // A header exactly as Arnold 4.2 (MtoA) wrote it: github.com/zewt/exrflatten, sample/sample2.exr
-// (deep scan lines, 500x500, channels R G B A Z ZBack N.X N.Y N.Z P.X P.Y P.Z id; matrices and
-// samples below copied from the file). Its Z is planar depth (within 1.4e-4 of the camera-space z
+// (deep scan lines, 500x500, channels R G B A Z ZBack N.X N.Y N.Z P.X P.Y P.Z id; matrices, clip
+// planes and samples below copied from the file). Its Z is planar depth (within 1.4e-4 of the camera-space z
 // of its world positions P over 455 sampled pixels; radial distance is 2.1% off) and its
 // worldToNDC puts P on its pixel in [-1, 1], y up: the camera we read must do the same.
 TEST(ArnoldFileHeaderCamera, PutsThePositionsOnTheirPixels) {
@@ -571,8 +606,17 @@ TEST(ArnoldFileHeaderCamera, PutsThePositionsOnTheirPixels) {
                              {{-1.359375, 4.996094, -6.097656}, 266, 224, 9.43747},
                              {{0.7294922, 3.873047, 3.142578}, 189, 252, 18.58721},
                              {{-2.449219, 4.371094, -9.265625}, 371, 273, 6.382986}};
+  header.insert("arnold/camera/near_clip", Imf::FloatAttribute(1.0f));
+  header.insert("arnold/camera/far_clip", Imf::FloatAttribute(100000.0f));
+  // They are this camera's planes: the file's own worldToNDC z column holds f (z - n) / (f - n).
+  const Imath::M44f& toNdc = header.typedAttribute<Imf::M44fAttribute>("worldToNDC").value();
+  for (int row = 0; row < 4; ++row)
+    EXPECT_NEAR(toNdc[row][2], (toNdc[row][3] - (row == 3 ? 1.0 : 0.0)) * 100000.0 / 99999.0, 1e-5) << row;
   const std::optional<ssrcl::HeaderCamera> read = ssrcl::detail::cameraFromHeader(header, "sample2.exr");
   ASSERT_TRUE(read && read->problem.empty()) << (read ? read->problem : "no camera");
+  EXPECT_TRUE(read->clipPlanesKnown);
+  EXPECT_DOUBLE_EQ(read->camera.nearPlane, 1.0);
+  EXPECT_DOUBLE_EQ(read->camera.farPlane, 100000.0);
   for (const Sampled& sample : samples) {
     const glm::dvec3 eye = glm::dvec3(read->camera.view * glm::dvec4(sample.p, 1.0));
     const glm::dvec3 screen = ssrcl::cameraToScreen(read->camera, eye);
@@ -582,15 +626,64 @@ TEST(ArnoldFileHeaderCamera, PutsThePositionsOnTheirPixels) {
     EXPECT_NEAR(screen.z, sample.z, 2e-3 * sample.z) << "planar depth";
   }
 
-  // Read as OpenEXR's [0, 1] NDC (no arnold/* attribute), the same matrices put them far away.
-  Imf::Header plain(500, 500);
-  plain.insert("worldToCamera", header["worldToCamera"]);
-  plain.insert("worldToNDC", header["worldToNDC"]);
-  const std::optional<ssrcl::HeaderCamera> misread = ssrcl::detail::cameraFromHeader(plain, "plain.exr");
-  ASSERT_TRUE(misread && misread->problem.empty());
-  const glm::dvec3 off =
-      ssrcl::cameraToScreen(misread->camera, glm::dvec3(misread->camera.view * glm::dvec4(samples[0].p, 1.0)));
-  EXPECT_GT(std::abs(off.x - (samples[0].x + 0.5)), 50.0);
+  // Read as OpenEXR's [0, 1] NDC, as the attribute's name says, the same matrices would put P
+  // far from its pixel: x' = 2x - w, y' = w - 2y on the file's own projection.
+  const Imath::M44f& m = header.typedAttribute<Imf::M44fAttribute>("worldToNDC").value();
+  Imath::V3f misread;
+  m.multVecMatrix(Imath::V3f(float(samples[0].p.x), float(samples[0].p.y), float(samples[0].p.z)), misread);
+  EXPECT_GT(std::abs(misread.x * 500.0 - (samples[0].x + 0.5)), 50.0);
+}
+
+// A Houdini (Mantra) file's header, from its oiiotool dump in github.com/ynput/ayon-houdini/issues/76
+// (1280x720): worldToCamera looks down -z (worldToNDC's w is minus its camera z) and worldToNDC
+// is screen space, y up. Read so, the camera's axis falls on the frame's centre, in front of it,
+// and its focal lengths are the dump's own (x 2.414, y = x * 1280/720).
+TEST(HoudiniHeaderCamera, MantraDumpReadsAsItsCamera) {
+  const Imath::M44f toCamera(-0.243232f, -0.429738f, -0.869577f, 0, -4.55991e-08f, 0.8965f, -0.443043f, 0,  //
+                             -0.969968f, 0.107762f, 0.218058f, 0, -0.49336f, -0.356619f, 6.48486f, 1);
+  const Imath::M44f toNdc(-0.587216f, -1.84441f, -8.69577e-05f, 0.869577f, -1.10086e-07f, 3.84773f, -4.43043e-05f,
+                          0.443043f, -2.34172f, 0.462509f, 2.18058e-05f, -0.218058f, -1.19108f, -1.53059f,
+                          0.000648386f, -6.48486f);
+  for (int row = 0; row < 4; ++row) EXPECT_NEAR(toNdc[row][3], -toCamera[row][2], 1e-5) << "w = -z, row " << row;
+  Imf::Header header(1280, 720);
+  header.insert("worldToCamera", Imf::M44fAttribute(toCamera));
+  header.insert("worldToNDC", Imf::M44fAttribute(toNdc));
+  const std::optional<ssrcl::HeaderCamera> read = ssrcl::detail::cameraFromHeader(header, "mantra.exr");
+  ASSERT_TRUE(read && read->problem.empty()) << (read ? read->problem : "no camera");
+  // World points 5 and 50 units down the camera's -z axis (Houdini's viewing direction).
+  const Imath::M44f toWorld = toCamera.inverse();
+  for (const float d : {5.0f, 50.0f}) {
+    Imath::V3f world;
+    toWorld.multVecMatrix(Imath::V3f(0.0f, 0.0f, -d), world);
+    const glm::dvec3 screen =
+        ssrcl::cameraToScreen(read->camera, glm::dvec3(read->camera.view * glm::dvec4(world.x, world.y, world.z, 1.0)));
+    EXPECT_NEAR(screen.x, 640.0, 0.05) << d;
+    EXPECT_NEAR(screen.y, 360.0, 0.05) << d;
+    EXPECT_NEAR(screen.z, d, 1e-3 * d) << "planar depth";
+  }
+  EXPECT_NEAR(read->camera.projection[0][0], 2.41422, 1e-4);
+  EXPECT_NEAR(read->camera.projection[1][1], 2.41422 * 1280.0 / 720.0, 1e-3);
+}
+
+// `ssrcl trace --append` on an Arnold file keeps its arnold/* attributes beside the pass's camera,
+// written as OpenEXR's NDC: it reads back as written.
+TEST(ArnoldFileHeaderCamera, CameraWrittenBesideArnoldAttributesReadsBack) {
+  ssrcl::Camera camera;
+  camera.view = glm::lookAt(glm::dvec3(2.0, -6.0, 3.0), glm::dvec3(0.0, 0.0, 0.5), glm::dvec3(0.0, 0.0, 1.0));
+  camera.projection = glm::perspective(0.7, 480.0 / 270.0, 0.1, 100.0);
+  camera.width = 480;
+  camera.height = 270;
+  const glm::dvec3 world(0.7, 0.4, 1.1);
+  const glm::dvec3 truth = ssrcl::cameraToScreen(camera, glm::dvec3(camera.view * glm::dvec4(world, 1.0)));
+  Imf::Header arnold(480, 270);
+  arnold.insert("arnold/version", Imf::StringAttribute("Arnold 4.2.16.2"));
+  ssrcl::detail::cameraToHeader(camera, arnold);
+  const std::optional<ssrcl::HeaderCamera> read = ssrcl::detail::cameraFromHeader(arnold, "appended.exr");
+  ASSERT_TRUE(read && read->problem.empty());
+  const glm::dvec3 back = ssrcl::cameraToScreen(read->camera, glm::dvec3(read->camera.view * glm::dvec4(world, 1.0)));
+  EXPECT_NEAR(back.x, truth.x, 1e-2);
+  EXPECT_NEAR(back.y, truth.y, 1e-2);
+  EXPECT_NEAR(back.z, truth.z, 1e-4 * truth.z);
 }
 
 }  // namespace

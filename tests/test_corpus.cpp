@@ -81,27 +81,35 @@ TEST(Corpus, AdaptiveThicknessHoldsAgainstEachScenesBestConstant) {
 // Absolute floors at the measured PSNR, less 0.3 dB for device and driver differences.
 TEST(Corpus, DefaultsMeetMeasuredAccuracy) {
   const std::map<std::string, double> measured = {
-      {"tabletop_cm", 25.40}, {"thin_objects", 25.39}, {"mirror_glossy_tiles", 32.16}, {"night_street", 24.73}};
+      {"tabletop_cm", 25.46}, {"thin_objects", 25.36}, {"mirror_glossy_tiles", 32.16}, {"night_street", 24.70}};
   for (const auto& [scene, psnr] : measured) EXPECT_GE(scored(scene).errors.at("default").psnr, psnr - 0.3) << scene;
 }
 
 // Speckle: rough ground reflecting small bright neon. The prefiltered lookup cuts the 99th
 // percentile of per-pixel error (measured 0.309 -> 0.178 of the peak) and raises PSNR (19.9 ->
-// 24.7 dB); it darkens the pass a little on average (mean signed error -0.026 against -0.001,
-// peak 2.02): the price of the cone's averaging, bounded here at 2% of the peak.
+// 24.7 dB).
 TEST(Corpus, PrefilterRemovesSpeckle) {
   const Scored& s = scored("night_street");
   const ReferenceError on = s.errors.at("default"), off = s.errors.at("no prefilter");
   EXPECT_LT(on.p99, 0.65 * off.p99);
   EXPECT_GT(on.psnr, off.psnr + 4.0);
-  EXPECT_LT(std::abs(on.bias), 0.02 * s.ref.peak);
+}
+
+// ... without darkening the pass: the same rays read at full resolution are the unbiased pass
+// (their mean signed error itself moves by 0.015 between seeds on this scene, so the two are
+// compared, not each with 0). Pyramid weights from coverage alone put the prefiltered mean
+// 0.0252 under the full-resolution one (1.25% of the peak, 2.02); weighted by where the batch's
+// hits land (kernels/hit_prefilter.cl) 0.0035 under (seed 7: 0.0009).
+TEST(Corpus, PrefilterKeepsTheFullResolutionMean) {
+  const Scored& s = scored("night_street");
+  EXPECT_LT(std::abs(s.errors.at("default").bias - s.errors.at("no prefilter").bias), 0.003 * s.ref.peak);
 }
 
 // Specular pixels stay out of the colour pyramid (kernels/color_pyramid.cl). On a glossy table
 // with lamps standing on it, averaging the table's own texels into the lamps' footprints spread
 // their light where no ray collects it: measured on tabletop_cm, p99 of per-pixel error 0.147
 // prefiltered against 0.106 at full resolution and mean signed error -0.183 against -0.163 before;
-// 0.111 against 0.105 and -0.171 against -0.163 now.
+// 0.109 against 0.105 and -0.169 against -0.163 now (hit-weighted pyramid).
 TEST(Corpus, PrefilterLeavesSpecularPixelsOut) {
   const Scored& s = scored("tabletop_cm");
   const ReferenceError on = s.errors.at("default"), off = s.errors.at("no prefilter");

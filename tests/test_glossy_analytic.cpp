@@ -281,12 +281,13 @@ TEST(GlossyTruth, SceneIsAsDesigned) {
 // ---------------------------------------------------------------------------------------------
 // The SSR pipeline against the truth.
 
-ssrcl::Image runSsr(const GlossyCase& c, ssrcl::TraceSettings s) {
+// `g` replaces the case's G-buffer (same surfaces, other pass values).
+ssrcl::Image runSsr(const GlossyCase& c, ssrcl::TraceSettings s, const ssrcl::GBuffer* g = nullptr) {
   static ssrcl::Device device = testDevice();  // one device: kernels compile once per process
   s.edgeFade = 0;                              // the truth has no fade
   s.maxRoughness = kMaxRoughness;
   ssrcl::Pipeline p(device);
-  p.setGBuffer(c.g);
+  p.setGBuffer(g ? *g : c.g);
   p.setCamera(c.camera);
   p.settings() = s;
   p.commit();
@@ -308,9 +309,9 @@ struct Errors {
 };
 
 // `lo`/`hi` given: the error is the distance outside [lo, hi] (scaled by the panel's radiance for
-// rgb) instead of the difference to the truth.
+// rgb) instead of the difference to the truth. `only` given: over the pixels (x, y) it accepts.
 Errors compare(const GlossyCase& c, const ssrcl::Image& out, const GlossyTruth* lo = nullptr,
-               const GlossyTruth* hi = nullptr) {
+               const GlossyTruth* hi = nullptr, const std::function<bool(int, int)>& only = {}) {
   const dvec3 radiance = glossyPanelRadiance();
   const auto error = [&](double got, std::size_t i, double scale) {
     if (!lo) return got - scale * c.truth.pixels[i].a;
@@ -319,7 +320,7 @@ Errors compare(const GlossyCase& c, const ssrcl::Image& out, const GlossyTruth* 
   };
   Errors e;
   for (std::size_t i = 0; i < c.truth.pixels.size(); ++i) {
-    if (!c.truth.pixels[i].receiver) continue;
+    if (!c.truth.pixels[i].receiver || (only && !only(int(i % kWidth), int(i / kWidth)))) continue;
     ++e.pixels;
     const double da = error(out.data[4 * i + 3], i, 1.0);
     e.biasA += da;
@@ -541,8 +542,122 @@ TEST_P(GlossySsr, RaysFollowingRoughnessStayUnbiased) {
   EXPECT_GT(e.rmsA, e4.rmsA);
 }
 
+// The non-default paths against the same truth (issue 17). Bounds: measured (PoCL) plus the fast
+// path's margins (0.004 on biases, 10% on rms: fixed seed, only float rounding of hit decisions
+// moves them on another platform).
+
+// "high" (16 rays and the edge-aware filter): the filter must cut the error against the truth
+// (not only smooth), without biasing it.
+TEST_P(GlossySsr, HighPresetFilterCutsTheErrorWithoutBias) {
+  const GlossyCase& c = glossyCase(GetParam());
+  ssrcl::TraceSettings high = ssrcl::qualityPreset("high");
+  const ssrcl::Image filtered = runSsr(c, high);
+  checkInvariants(c, filtered);
+  high.denoise = false;
+  const Errors e = compare(c, filtered), raw = compare(c, runSsr(c, high));
+  std::cout << "r " << c.roughness << " high: " << describe(e) << "\n   unfiltered: " << describe(raw) << "\n";
+  record("high", e);
+  record("high_unfiltered", raw);
+  // Measured: bias A -0.0003 (r 0.3) and -0.0022 (r 0.6), channels within 0.0020; rms A 0.0132
+  // and 0.0160; the filter takes the rms from 0.0140 and 0.0186 (x0.94, x0.86) and mean |err|
+  // from 0.0084 and 0.0107 (x0.90, x0.78). A filter that passes its input through fails the gains.
+  EXPECT_LT(std::abs(e.biasA), 0.004);
+  for (int ch = 0; ch < 3; ++ch) EXPECT_LT(std::abs(e.biasChannel[ch]), 0.004) << ch;
+  EXPECT_LT(e.rmsA, 0.0176);
+  EXPECT_LT(e.rmsA, 0.98 * raw.rmsA);
+  EXPECT_LT(e.meanAbsA, 0.95 * raw.meanAbsA);
+  EXPECT_LT(e.meanAbsRgb, 0.95 * raw.meanAbsRgb);
+}
+
+// "draft" (2 rays in one pixel of each 2x2 block, 64 iterations): the three pixels of a block
+// without rays of their own are reconstructed from their neighbours' rays; against the truth they
+// must be about as good as the traced ones, and the whole pass unbiased.
+TEST_P(GlossySsr, DraftStrideTwoReconstructsTheUntracedPixels) {
+  const GlossyCase& c = glossyCase(GetParam());
+  const ssrcl::Image draft = runSsr(c, ssrcl::qualityPreset("draft"));
+  checkInvariants(c, draft);
+  const auto traced = [](int x, int y) { return x % 2 == 0 && y % 2 == 0; };
+  const Errors e = compare(c, draft), own = compare(c, draft, nullptr, nullptr, traced),
+               borrowed = compare(c, draft, nullptr, nullptr, [&](int x, int y) { return !traced(x, y); });
+  std::cout << "r " << c.roughness << " draft: " << describe(e) << "\n   traced pixels: " << describe(own)
+            << "\n   reconstructed pixels: " << describe(borrowed) << "\n";
+  record("draft", e);
+  record("draft_reconstructed", borrowed);
+  // Measured: bias A -0.0022 (r 0.3) and -0.0051 (r 0.6: 64 iterations give up on some far hits),
+  // reconstructed pixels -0.0018 and -0.0054, channels within 0.0049; rms A 0.088 and 0.116, the
+  // reconstructed pixels' 1.22x and 1.30x the traced ones'. Bounds: biases 0.002 beyond the worst
+  // (as the fast path's margin), rms 10%. Untraced pixels left empty fail the bias at once.
+  EXPECT_LT(std::abs(e.biasA), 0.0075);
+  EXPECT_LT(std::abs(borrowed.biasA), 0.0075);
+  for (int ch = 0; ch < 3; ++ch) EXPECT_LT(std::abs(borrowed.biasChannel[ch]), 0.0075) << ch;
+  EXPECT_LT(e.rmsA, 0.128);
+  EXPECT_LT(borrowed.rmsA, 1.43 * own.rmsA);
+}
+
+// --roughness-mapping linear: alpha is the roughness pass itself. Given roughness^2 it must
+// reproduce the squared mapping's truth (alpha = roughness^2) within the fast path's bounds.
+TEST_P(GlossySsr, LinearRoughnessMappingTakesThePassAsAlpha) {
+  const GlossyCase& c = glossyCase(GetParam());
+  ssrcl::GBuffer alphaPass = c.g;
+  for (float& r : alphaPass.roughness.data) r *= r;
+  ssrcl::TraceSettings s;
+  s.roughnessMapping = ssrcl::RoughnessMapping::Linear;
+  const ssrcl::Image out = runSsr(c, s, &alphaPass);
+  checkInvariants(c, out);
+  const Errors e = compare(c, out);
+  std::cout << "r " << c.roughness << " linear mapping of roughness^2: " << describe(e) << "\n";
+  record("linear_mapping", e);
+  // Measured: the squared mapping's numbers to the last digit (bias A -0.0022 / -0.0016, rms A
+  // 0.031 / 0.038); its bounds.
+  EXPECT_LT(std::abs(e.biasA), 0.004);
+  for (int ch = 0; ch < 3; ++ch) EXPECT_LT(std::abs(e.biasChannel[ch]), 0.004) << ch;
+  EXPECT_LT(e.rmsA, 0.042);
+  EXPECT_LT(e.rmsRgb, 0.027);
+}
+
 INSTANTIATE_TEST_SUITE_P(Roughness, GlossySsr, ::testing::Values(0.3, 0.6),
                          [](const auto& info) { return "r" + std::to_string(int(std::lround(info.param * 100))); });
+
+// A creased floor: a ridge along x = 0 with the halves' normals 30 degrees apart (dot 0.87, below
+// the resolve's 0.9), roughness 0.6 so that the halves' lobes overlap. Pixels within the reuse
+// radius of the crease must not take the other half's rays: those were drawn from another lobe,
+// which covers only part of this pixel's hemisphere, so the ratio estimate loses what only its
+// own lobe sees. Against the truth of both halves, over those pixels.
+TEST(GlossySsrCrease, RaysAreNotReusedAcrossTheCrease) {
+  GlossyCase c;
+  c.roughness = 0.6;
+  c.scene = makeCreasedGlossyScene(c.roughness, 15.0);
+  c.camera = makeCamera(c.scene.view, kWidth, kHeight);
+  c.g = renderGBuffer(c.scene, c.camera);
+  c.truth = glossyTruth(c.scene, c.camera, c.g, kGlossyFloor, kGlossyPanel);
+  const GlossyTruth right = glossyTruth(c.scene, c.camera, c.g, kCreaseRightHalf, kGlossyPanel);
+  for (std::size_t i = 0; i < right.pixels.size(); ++i)
+    if (right.pixels[i].receiver) c.truth.pixels[i] = right.pixels[i];
+  const int reach = ssrcl::TraceSettings{}.reuseRadius;
+  const auto nearCrease = [&](int x, int y) {
+    const int own = c.g.hit(x, y).primitive;
+    for (int dy = -reach; dy <= reach; ++dy)
+      for (int dx = -reach; dx <= reach; ++dx) {
+        const int qx = x + dx, qy = y + dy;
+        if (qx < 0 || qy < 0 || qx >= kWidth || qy >= kHeight) continue;
+        const int other = c.g.hit(qx, qy).primitive;
+        if (other != own && (other == kGlossyFloor || other == kCreaseRightHalf)) return true;
+      }
+    return false;
+  };
+  const ssrcl::Image out = runSsr(c, ssrcl::TraceSettings{});
+  const Errors band = compare(c, out, nullptr, nullptr, nearCrease), all = compare(c, out);
+  std::cout << "creased floor, medium: " << describe(all) << "\n   within " << reach
+            << " px of the crease: " << describe(band) << "\n";
+  record("crease_band", band);
+  // Measured (PoCL): in the band bias A +0.0081, rms A 0.0576 (over the whole floor +0.0068,
+  // 0.041: the tilted halves' own residue, not understood yet); reusing the other half's rays
+  // moves the band to bias -0.0040 and rms 0.0654. Bounds: rms 10% above the measured value, the
+  // bias within 0.006 of it (half the mutant's shift).
+  ASSERT_GT(band.pixels, 100u);
+  EXPECT_LT(std::abs(band.biasA - 0.0081), 0.006);
+  EXPECT_LT(band.rmsA, 0.0634);
+}
 
 // Same inputs and seed: bit-identical output; another seed: another output.
 TEST(GlossySsrDeterminism, SeedDecidesTheOutput) {

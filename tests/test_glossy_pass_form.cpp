@@ -218,7 +218,7 @@ TEST(GlossyPassForm, MatchesCyclesOnATintedFloor) {
   pipeline.execute();
   const ssrcl::Image incident = pipeline.output("reflection");
   ssrcl::Image glossy = incident;
-  ssrcl::applyGlossyPassForm(glossy, g, ref.camera, -1.0f);
+  ssrcl::applyGlossyPassForm(glossy, g, ref.camera, std::nullopt);
 
   ssrcl::test::CyclesReference asIs = ref;  // the glossy-pass form is compared with Cycles unscaled
   std::fill(asIs.scale.begin(), asIs.scale.end(), 1.0);

@@ -131,7 +131,7 @@ TEST(LoadGBuffer, ConstantRoughnessNeedsNoRoughnessChannel) {
   ch.pop_back();
   test::writeExr(dir.file("render.exr"), kWidth, kHeight, ch);
   auto source = fromFile(dir.file("render.exr"));
-  source.constantRoughness = 0.3f;
+  source.readRoughness = false;
   const GBuffer g = loadGBuffer(source);
   expectGBuffer(g, {ch[0], ch[1], ch[2]}, ch[4], {ch[5], ch[6], ch[7]}, nullptr);
 }

@@ -5,11 +5,12 @@
 
 #include <Imath/half.h>
 
+#include <cmath>
 #include <cstring>
 
 #include "device_impl.hpp"
-#include "scenes/analytic_scene.hpp"
 #include "ssrcl/ssrcl.hpp"
+#include "support/analytic_frame.hpp"
 #include "support/test_device.hpp"
 
 namespace {
@@ -19,25 +20,13 @@ using ssrcl::ImageView;
 using ssrcl::PixelFormat;
 using ssrcl::TraceSettings;
 
-ssrcl::Device& device() {
-  static ssrcl::Device d = ssrcl::test::testDevice();
-  return d;
-}
-
-struct Frame {
-  ssrcl::Camera camera;
-  ssrcl::GBuffer g;
-};
+using Frame = ssrcl::test::AnalyticFrame;
+using ssrcl::test::runFrame;
+using ssrcl::test::sharedTestDevice;
 
 // Spheres on a glossy floor; `shift` moves the camera so consecutive frames differ.
 Frame render(int width, int height, double shift = 0.0) {
-  const ssrcl::test::Scene scene = ssrcl::test::makeScene("spheres_on_mirror");
-  Frame f;
-  ssrcl::test::ViewParams view = scene.view;
-  view.eye.x += shift;
-  f.camera = ssrcl::test::makeCamera(view, width, height);
-  ssrcl::test::AnalyticGBuffer g = ssrcl::test::renderGBuffer(scene, f.camera);
-  f.g = static_cast<ssrcl::GBuffer&>(g);
+  Frame f = ssrcl::test::renderAnalyticFrame("spheres_on_mirror", width, height, shift);
   for (float& r : f.g.roughness.data) r = 0.3f;  // glossy: every stage runs
   return f;
 }
@@ -55,12 +44,8 @@ struct Output {
 
 // The plain way: a fresh pipeline, Image inputs, outputs read with output().
 Output reference(const Frame& f, const TraceSettings& s) {
-  ssrcl::Pipeline p(device());
-  p.setGBuffer(f.g);
-  p.setCamera(f.camera);
-  p.settings() = s;
-  p.commit();
-  p.execute();
+  ssrcl::Pipeline p(sharedTestDevice());
+  runFrame(p, f, s);
   const Image& rgba = p.output("reflection");
   size_t found = 0;  // the comparisons mean something only where the pass is not empty
   for (size_t i = 3; i < rgba.data.size(); i += 4) found += rgba.data[i] > 0.5f;
@@ -74,7 +59,7 @@ void expectSame(const Output& a, const Output& b) {
 }
 
 TEST(PipelineApi, FramesOfOneSizeReuseThePipelineAndGiveFreshPipelinesOutput) {
-  ssrcl::Pipeline p(device());
+  ssrcl::Pipeline p(sharedTestDevice());
   p.settings() = glossy();
   size_t bytes = 0;
   for (int k = 0; k < 3; ++k) {
@@ -99,12 +84,8 @@ TEST(PipelineApi, FramesOfOneSizeReuseThePipelineAndGiveFreshPipelinesOutput) {
 
 TEST(PipelineApi, SettingsChangedAfterCommitAreValidatedAndApplied) {
   const Frame f = render(96, 64);
-  ssrcl::Pipeline p(device());
-  p.setGBuffer(f.g);
-  p.setCamera(f.camera);
-  p.settings() = glossy();
-  p.commit();
-  p.execute();
+  ssrcl::Pipeline p(sharedTestDevice());
+  runFrame(p, f, glossy());
   // More rays and another tracer after commit: execute() plans again.
   TraceSettings changed = glossy();
   changed.samplesPerPixel = 6;
@@ -144,7 +125,7 @@ TEST(PipelineApi, ViewsOfAnyLayoutReadAndWriteTheCallersMemory) {
   std::vector<Imath::half> reflection(size_t(w) * h * 4);
   std::vector<float> distance(size_t(w) * h * 2, -1.0f);
 
-  ssrcl::Pipeline p(device());
+  ssrcl::Pipeline p(sharedTestDevice());
   p.setImage("color", ImageView(colorBytes.data(), PixelFormat::Half, w, h, 3, 4 * sizeof(Imath::half), colorRow));
   p.setImage("depth", ImageView(depthPadded.data(), PixelFormat::Float, w, h, 1, 2 * sizeof(float)));
   p.setImage("normal", ImageView(f.g.normal.data.data(), w, h, 3));
@@ -170,7 +151,7 @@ TEST(PipelineApi, ViewsOfAnyLayoutReadAndWriteTheCallersMemory) {
 
 TEST(PipelineApi, ProgressReachesOneAndFalseCancels) {
   const Frame f = render(64, 48);
-  ssrcl::Pipeline p(device());
+  ssrcl::Pipeline p(sharedTestDevice());
   p.setGBuffer(f.g);
   p.setCamera(f.camera);
   p.settings() = glossy();
@@ -202,7 +183,7 @@ TEST(PipelineApi, ProgressReachesOneAndFalseCancels) {
 
 TEST(PipelineApi, MisuseIsInvalidOperation) {
   const Frame f = render(32, 32);
-  ssrcl::Pipeline p(device());
+  ssrcl::Pipeline p(sharedTestDevice());
   const auto expectInvalidOperation = [&] {
     try {
       p.execute();
@@ -216,23 +197,113 @@ TEST(PipelineApi, MisuseIsInvalidOperation) {
   p.setCamera(f.camera);
   p.commit();
   p.execute();
-  p.setImage("depth", f.g.depth);  // an input changed since the commit
+  p.setCamera(f.camera);  // a camera set since the commit
   expectInvalidOperation();
+}
+
+// OIDN's way: images set after commit() with the committed shapes are what the next execute()
+// reads, no commit in between; the camera stays the committed one.
+TEST(PipelineApi, NewImagesOfTheCommittedShapeNeedNoCommit) {
+  const Frame first = render(96, 64), second = render(96, 64, 0.1);
+  ssrcl::Pipeline p(sharedTestDevice());
+  runFrame(p, first, glossy());
+  const Image firstPass = p.output("reflection");
+
+  // The second frame's images seen through the first camera: what a fresh pipeline gives for them.
+  const Frame mixed{first.camera, second.g};
+  p.setGBuffer(mixed.g);
+  p.execute();
+  const Output truth = reference(mixed, glossy());
+  expectSame({p.output("reflection"), p.output("distance")}, truth);
+  EXPECT_NE(truth.rgba.data, firstPass.data) << "the new images change nothing: the test cannot tell";
+
+  // A view of caller memory in another layout, same size and channels, needs none either.
+  std::vector<float> padded(first.g.depth.data.size() * 2, -3.0f);
+  for (size_t i = 0; i < first.g.depth.data.size(); ++i) padded[2 * i] = first.g.depth.data[i];
+  p.setImage("depth", ImageView(padded.data(), PixelFormat::Float, 96, 64, 1, 2 * sizeof(float)));
+  p.execute();
+  Frame firstDepth = mixed;
+  firstDepth.g.depth = first.g.depth;
+  expectSame({p.output("reflection"), p.output("distance")}, reference(firstDepth, glossy()));
+}
+
+// The constant roughness is one optional setting: set, no roughness image is read and every pixel
+// traces as if the image held that value everywhere; out of [0, 1] it is refused by name.
+TEST(PipelineApi, ConstantRoughnessReplacesTheRoughnessImage) {
+  Frame f = render(64, 48);  // its roughness image is 0.3 everywhere
+  const Output truth = reference(f, glossy());
+  f.g.roughness = Image();
+  TraceSettings constant = glossy();
+  constant.constantRoughness = 0.3f;
+  ssrcl::Pipeline p(sharedTestDevice());
+  runFrame(p, f, constant);
+  expectSame({p.output("reflection"), p.output("distance")}, truth);
+
+  for (float wrong : {-0.1f, 1.5f, std::nanf("")}) {
+    constant.constantRoughness = wrong;
+    try {
+      ssrcl::validateSettings(constant);
+      ADD_FAILURE() << "no error for " << wrong;
+    } catch (const ssrcl::Error& e) {
+      EXPECT_EQ(e.code(), ssrcl::ErrorCode::InvalidArgument);
+      EXPECT_NE(std::string(e.what()).find("parameter roughness must be in [0, 1]"), std::string::npos) << e.what();
+    }
+  }
+  constant.constantRoughness.reset();  // unset: the roughness image is needed again
+  p.settings() = constant;
+  try {
+    p.commit();
+    ADD_FAILURE() << "no error";
+  } catch (const ssrcl::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("'roughness' not set"), std::string::npos) << e.what();
+  }
+}
+
+TEST(PipelineApi, InputsSetRemovedOrResizedSinceCommitNeedCommit) {
+  const Frame f = render(48, 32), larger = render(64, 32);
+  ssrcl::Pipeline p(sharedTestDevice());
+  runFrame(p, f, TraceSettings());
+  const auto expectCommitAsked = [&](const std::string& image, const std::string& change) {
+    try {
+      p.execute();
+      ADD_FAILURE() << "no error";
+    } catch (const ssrcl::Error& e) {
+      EXPECT_EQ(e.code(), ssrcl::ErrorCode::InvalidOperation) << e.what();
+      const std::string message = e.what();
+      for (const std::string& part : {"'" + image + "'", change, std::string("commit()")})
+        EXPECT_NE(message.find(part), std::string::npos) << message;
+    }
+  };
+  p.setImage("depth", larger.g.depth);
+  expectCommitAsked("depth", "changed from 48x32 with 1 channel to 64x32 with 1 channel");
+  p.setImage("depth", f.g.depth);
+  p.execute();  // the committed shape again
+  const Image fourChannels(48, 32, 4), none;  // the pipeline follows Images until execute()
+  p.setImage("normal", fourChannels);
+  expectCommitAsked("normal", "with 4 channels");
+  p.setImage("normal", f.g.normal);
+  p.setImage("base", f.g.color);
+  p.setImage("specular", f.g.color);
+  expectCommitAsked("base", "was set");
+  p.setImage("base", none);
+  p.setImage("specular", none);
+  p.setImage("roughness", none);
+  expectCommitAsked("roughness", "was removed");
+  // After commit() the new shapes are the committed ones (here: no roughness image, a constant).
+  p.settings().constantRoughness = 0.3f;
+  p.commit();
+  p.execute();
 }
 
 TEST(PipelineApi, CallersOpenClContextAndQueue) {
   const Frame f = render(80, 48);
-  const cl::Device clDevice = ssrcl::detail::DeviceAccess::impl(device()).device;  // the same device
+  const cl::Device clDevice = ssrcl::detail::DeviceAccess::impl(sharedTestDevice()).device;  // the same device
   const cl::Context context(clDevice);
   const cl::CommandQueue queue(context, clDevice, CL_QUEUE_PROFILING_ENABLE);
   const ssrcl::Device shared(clDevice(), context(), queue());
-  EXPECT_EQ(shared.info().name, device().info().name);
+  EXPECT_EQ(shared.info().name, sharedTestDevice().info().name);
   ssrcl::Pipeline p(shared);
-  p.setGBuffer(f.g);
-  p.setCamera(f.camera);
-  p.settings() = glossy();
-  p.commit();
-  p.execute();
+  runFrame(p, f, glossy());
   expectSame({p.output("reflection"), p.output("distance")}, reference(f, glossy()));
 
   const cl::CommandQueue plain(context, clDevice);  // no profiling: no stage times

@@ -18,7 +18,7 @@ namespace {
 
 struct BenchOptions {
   std::vector<std::string> files, samples, sizes{"1920x1080"};
-  std::string scene, device, json, plot;
+  std::string scene, device, json, plot, sampleDir;
   float sceneRoughness = 0.3f;
   std::vector<std::string> qualities{"draft", "medium", "high"}, tracers{"hiz", "dda", "linear"};
   std::vector<int> sppList;
@@ -81,14 +81,14 @@ void printScaling(std::ostream& out, const std::vector<BenchResult>& results) {
 int runBenchCommand(const BenchOptions& o) {
   std::vector<BenchInput> inputs;
   for (const std::string& f : o.files) inputs.push_back(loadBenchFile(f));
-  for (const std::string& s : o.samples) inputs.push_back(loadBundledSample(s));
+  for (const std::string& s : o.samples) inputs.push_back(loadBundledSample(s, o.sampleDir));
   if (!o.scene.empty())
     for (const std::string& size : o.sizes) {
       const auto [w, h] = parseSize(size, "--size");
       inputs.push_back(generateScene(o.scene, w, h, o.sceneRoughness));
     }
   if (inputs.empty())
-    for (const char* s : {"mirror", "glossy"}) inputs.push_back(loadBundledSample(s));
+    for (const char* s : {"mirror", "glossy"}) inputs.push_back(loadBundledSample(s, o.sampleDir));
 
   Device device = openDevice(o.device);
   const std::vector<BenchConfig> configs = configurations(o);
@@ -119,6 +119,10 @@ Action addBenchCommand(CLI::App& app) {
   cmd->add_option("inputs", o->files, "G-buffer EXRs (Blender naming, <stem>.camera.json beside each)");
   cmd->add_option("--sample", o->samples, "Bundled sample: mirror, glossy (default: both, when no input is given)")
       ->check(CLI::IsMember({"mirror", "glossy"}));
+  cmd->add_option("--sample-dir", o->sampleDir,
+                  "Directory holding the bundled samples (mirror/, glossy/); default: share/ssrcl/samples of the "
+                  "installation")
+      ->check(CLI::ExistingDirectory);
   cmd->add_option("--scene", o->scene, "Generated analytic scene: spheres_on_mirror, mirror_wall, half_sky");
   cmd->add_option("--size", o->sizes, "Resolution(s) of the generated scene, e.g. 480x270 1920x1080")
       ->capture_default_str();

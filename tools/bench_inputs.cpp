@@ -19,26 +19,39 @@ BenchInput loadBenchFile(const std::string& exr) {
   return in;
 }
 
-BenchInput loadBundledSample(const std::string& name) {
+std::string findSampleDir(const std::string& sampleDir) {
+  if (!sampleDir.empty()) return sampleDir;
+  std::error_code ec;
+  const std::filesystem::path exeDir = std::filesystem::read_symlink("/proc/self/exe", ec).parent_path();
+  const std::filesystem::path installed = exeDir.parent_path() / "share" / "ssrcl" / "samples",
+                              built = exeDir / "share" / "ssrcl" / "samples";
+  for (const std::filesystem::path& dir : {installed, built})
+    if (std::filesystem::is_directory(dir, ec)) return dir.string();
+  throw Error(ErrorCode::IoError, "--sample: no bundled samples in " + installed.string() + " nor " + built.string() +
+                                      "; give --sample-dir (a directory holding mirror/ and glossy/, e.g. the "
+                                      "source tree's samples/blender)");
+}
+
+BenchInput loadBundledSample(const std::string& name, const std::string& sampleDir) {
   if (name != "mirror" && name != "glossy")
     throw Error(ErrorCode::InvalidArgument, "--sample: expected mirror or glossy, got '" + name + "'");
-  BenchInput in = loadBenchFile(std::string(SSRCL_SOURCE_DIR) + "/samples/blender/" + name + "/" + name + ".exr");
+  BenchInput in = loadBenchFile(findSampleDir(sampleDir) + "/" + name + "/" + name + ".exr");
   in.name = "sample " + name;
   return in;
 }
 
 BenchInput generateScene(const std::string& scene, int width, int height, float roughness) {
-  test::Scene s;
+  scenes::Scene s;
   try {
-    s = test::makeScene(scene);
+    s = scenes::makeScene(scene);
   } catch (const std::invalid_argument&) {
     std::string names;
-    for (const auto& n : test::sceneNames()) names += (names.empty() ? "" : ", ") + n;
+    for (const auto& n : scenes::sceneNames()) names += (names.empty() ? "" : ", ") + n;
     throw Error(ErrorCode::InvalidArgument, "--scene: unknown scene '" + scene + "' (known: " + names + ")");
   }
   BenchInput in;
-  in.camera = test::makeCamera(s.view, width, height);
-  test::AnalyticGBuffer g = test::renderGBuffer(s, in.camera);
+  in.camera = scenes::makeCamera(s.view, width, height);
+  scenes::AnalyticGBuffer g = scenes::renderGBuffer(s, in.camera);
   in.gbuffer = static_cast<GBuffer&>(g);
   if (roughness >= 0.0f)
     for (float& r : in.gbuffer.roughness.data) r = roughness;

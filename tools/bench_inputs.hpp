@@ -16,8 +16,12 @@ struct BenchInput {
 
 // A G-buffer EXR (Blender naming) with its <stem>.camera.json sidecar.
 BenchInput loadBenchFile(const std::string& exr);
-// A bundled sample: "mirror" or "glossy" (samples/blender/<name>/<name>.exr).
-BenchInput loadBundledSample(const std::string& name);
+// Where the bundled samples are (a directory holding mirror/ and glossy/): `sampleDir` when given
+// (--sample-dir), else share/ssrcl/samples installed beside the executable's bin/, else the copy
+// the build puts beside the executable. No source path is compiled in.
+std::string findSampleDir(const std::string& sampleDir);
+// A bundled sample: "mirror" or "glossy" (<sample dir>/<name>/<name>.exr with its camera sidecar).
+BenchInput loadBundledSample(const std::string& name, const std::string& sampleDir);
 // A generated analytic scene at a resolution; roughness >= 0 makes every surface that rough.
 BenchInput generateScene(const std::string& scene, int width, int height, float roughness);
 

@@ -12,12 +12,18 @@ bool given(const CLI::Option* option) { return option && option->count() > 0; }
 
 std::string sizeText(int width, int height) { return std::to_string(width) + "x" + std::to_string(height); }
 
+// The file whose header camera is read: the depth's (or positions').
+std::string headerCameraFile(const GBufferSource& source) {
+  if (source.positionFile.empty() && source.depthFile.empty()) return source.file;
+  return source.positionChannels.empty() ? source.depthFile : source.positionFile;
+}
+
 }  // namespace
 
 GBufferSource GBufferInputOptions::sourceFor(const std::string& file) const {
   GBufferSource s = source;
   s.file = file;
-  if (roughness >= 0.0f) s.constantRoughness = roughness;
+  s.readRoughness = !roughness;
   const RendererPreset& preset = rendererPreset(renderer);
   if (!given(layerOption)) s.layer = preset.layer;
   if (!given(colorOption)) s.colorChannels = preset.colorChannels;
@@ -64,9 +70,8 @@ void addChannelOptions(CLI::App& cmd, GBufferInputOptions& o) {
       ->group(in)
       ->check(CLI::IsMember({"world", "camera", "camera-gl"}));
   cmd.add_option("--roughness-channel", o.source.roughnessChannel, "Roughness channel name")->group(in);
-  cmd.add_option("--roughness", o.roughness, "Constant roughness for every pixel instead of a channel")
-      ->group(in)
-      ->check(CLI::Range(0.0f, 1.0f));
+  // Its range is the library's check (validateSettings).
+  cmd.add_option("--roughness", o.roughness, "Constant roughness for every pixel instead of a channel")->group(in);
   cmd.add_flag("!--no-glossy-passes", o.source.glossyPasses,
                "Ignore Blender's glossy passes (GlossDir/GlossInd/GlossCol): hits on glossy surfaces then take their "
                "screen colour instead of a second bounce")
@@ -102,10 +107,7 @@ Frame loadFrame(const GBufferInputOptions& o, const std::string& input, const st
   const bool useHeader = headerFallback && !std::filesystem::exists(cameraPath, ec);
   if (useHeader && !g.headerCamera)
     throw Error(ErrorCode::InvalidInput,
-                cameraPath + ": no such camera file, and " +
-                    (source.positionFile.empty() && source.depthFile.empty() ? source.file
-                     : source.positionChannels.empty()                        ? source.depthFile
-                                                                              : source.positionFile) +
+                cameraPath + ": no such camera file, and " + headerCameraFile(source) +
                     " has no camera in its header (worldToCamera with worldToNDC or worldToScreen, or V-Ray's "
                     "cameraTransform with cameraFov); give --camera");
   if (useHeader && !g.headerCamera->problem.empty()) throw Error(ErrorCode::InvalidInput, g.headerCamera->problem);
@@ -122,6 +124,8 @@ Frame loadFrame(const GBufferInputOptions& o, const std::string& input, const st
   frame.camera = g.dataWindow == g.displayWindow ? display : reframeCamera(display, g.displayWindow, g.dataWindow);
   if (o.inputCheck) checkInputConventions(g, source, frame.camera);
   applyInputConventions(g, source, frame.camera);
+  if (useHeader && g.headerCamera->clipPlanesKnown)
+    checkClipPlanes(frame.camera, g.depth, headerCameraFile(source) + ": " + cameraName);
   if (useHeader && !g.headerCamera->clipPlanesKnown) fitClipPlanes(frame.camera, g.depth);
   validateCamera(frame.camera, cameraName.c_str());
   return frame;

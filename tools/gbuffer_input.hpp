@@ -1,5 +1,6 @@
 #pragma once
 #include <CLI/CLI.hpp>
+#include <optional>
 #include <string>
 
 #include "output_form_options.hpp"
@@ -13,7 +14,7 @@ namespace ssrcl::cli {
 // that the declared conventions fit the passes.
 struct GBufferInputOptions {
   GBufferSource source;     // layer, channel names and pass files; `file` is set per frame
-  float roughness = -1.0f;  // >= 0: this roughness everywhere, no roughness channel read
+  std::optional<float> roughness;  // --roughness: TraceSettings::constantRoughness
   std::string renderer = "blender";
   std::string depthKind, normalSpace;  // empty: the renderer's
   bool inputCheck = true;

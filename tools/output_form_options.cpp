@@ -50,7 +50,7 @@ void addOutputFormOptions(CLI::App& cmd, OutputFormOptions& o) {
 }
 
 void toOutputForm(const OutputFormOptions& o, Image& reflection, const GBuffer& gbuffer, const Camera& camera,
-                  float constantRoughness) {
+                  std::optional<float> constantRoughness) {
   if (o.resolved() == OutputForm::GlossyPass) applyGlossyPassForm(reflection, gbuffer, camera, constantRoughness);
 }
 

@@ -1,5 +1,6 @@
 #pragma once
 #include <CLI/CLI.hpp>
+#include <optional>
 #include <string>
 
 #include "ssrcl/glossy_pass_form.hpp"
@@ -23,6 +24,6 @@ void addOutputFormOptions(CLI::App& cmd, OutputFormOptions& o);
 
 // The pass in the form asked for: unchanged for incident, else times E (applyGlossyPassForm).
 void toOutputForm(const OutputFormOptions& o, Image& reflection, const GBuffer& gbuffer, const Camera& camera,
-                  float constantRoughness);
+                  std::optional<float> constantRoughness);
 
 }  // namespace ssrcl::cli

@@ -31,7 +31,7 @@ nlohmann::ordered_json settingsJson(const TraceSettings& s) {
   j["maxIterations"] = s.maxIterations;
   j["maxRoughness"] = decimal(s.maxRoughness);
   j["edgeFade"] = decimal(s.edgeFade);
-  j["constantRoughness"] = decimal(s.constantRoughness);
+  j["constantRoughness"] = s.constantRoughness ? nlohmann::ordered_json(decimal(*s.constantRoughness)) : nullptr;
   j["glossyHitRoughness"] = decimal(s.glossyHitRoughness);
   j["samplesPerPixel"] = s.samplesPerPixel;
   j["fullRaysRoughness"] = decimal(s.fullRaysRoughness);

@@ -7,7 +7,7 @@ namespace ssrcl {
 // Typed failures, so callers (the CLI, batch jobs) can map them to exit codes and messages.
 enum class ErrorCode {
   InvalidArgument,  // a parameter or image the caller gave is unusable
-  InvalidOperation,  // a call out of order (execute before commit, a changed input not committed)
+  InvalidOperation,  // a call out of order (execute before commit, an input resized and not committed)
   Cancelled,         // the progress monitor asked to stop
   InvalidInput,     // a file's content is wrong: missing channel, size mismatch, singular matrix
   IoError,          // a file cannot be read or written

@@ -1,4 +1,6 @@
 #pragma once
+#include <optional>
+
 #include "ssrcl/camera.hpp"
 #include "ssrcl/image.hpp"
 #include "ssrcl/io.hpp"
@@ -15,8 +17,10 @@ const char* outputFormName(OutputForm form);  // "incident", "glossy-pass": the 
 // Turns a reflection pass (rgb premultiplied by A, as the pipeline writes it) into the glossy-pass
 // form: rgb times E(view, roughness, F0) per pixel and channel, A unchanged. `gbuffer` holds the
 // pipeline's conventions (planar depth, world normals) and either an F0 pass or base colour and
-// metallic passes; `camera` is that of its pixels; constantRoughness >= 0 replaces the roughness
-// pass. Throws Error(InvalidArgument) when the gbuffer has neither. Output finite for any input.
-void applyGlossyPassForm(Image& reflection, const GBuffer& gbuffer, const Camera& camera, float constantRoughness);
+// metallic passes; `camera` is that of its pixels; constantRoughness, when set (as
+// TraceSettings::constantRoughness), replaces the roughness pass. Throws Error(InvalidArgument) when the gbuffer has neither or
+// constantRoughness is outside [0, 1]. Output finite for any input.
+void applyGlossyPassForm(Image& reflection, const GBuffer& gbuffer, const Camera& camera,
+                         std::optional<float> constantRoughness);
 
 }  // namespace ssrcl

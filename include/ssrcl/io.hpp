@@ -37,7 +37,8 @@ struct GBufferSource {
   std::string depthChannel;
   std::string normalChannels;  // comma-separated "X,Y,Z" form
   std::string roughnessChannel;
-  std::optional<float> constantRoughness;  // when set, no roughness channel is read
+  // false: no roughness channel is read (TraceSettings::constantRoughness gives every pixel's).
+  bool readRoughness = true;
 
   // Non-empty: world-space positions ("P.X,P.Y,P.Z" form) are read instead of the depth pass and
   // give its planar depth; (0,0,0) and non-finite positions mean "no surface".
@@ -59,9 +60,11 @@ struct GBufferSource {
 };
 
 // The camera an EXR header describes, for its display window: OpenEXR's standard worldToCamera
-// with worldToNDC (or worldToScreen, read in RenderMan's default screen window), or V-Ray's
-// cameraTransform with cameraFov. Near/far come from the header where it has them (V-Ray's clip
-// attributes); otherwise `clipPlanesKnown` is false and fitClipPlanes sets them from the depth.
+// with worldToNDC or worldToScreen (OpenEXR's, OpenImageIO's and Houdini's conventions, told apart
+// from the matrices), or V-Ray's
+// cameraTransform with cameraFov. Near/far come from the header where it has them (RenderMan's,
+// Arnold's or V-Ray's clip attributes; checkClipPlanes checks them against the depth);
+// otherwise `clipPlanesKnown` is false and fitClipPlanes sets them from the depth.
 struct HeaderCamera {
   Camera camera;
   bool clipPlanesKnown = false;
@@ -77,7 +80,7 @@ struct GBuffer {
   // holds the file's depth pass where it has one (for the input check) until then.
   Image depth;
   Image normal;     // 3 channels: as declared until applyInputConventions, then world space
-  Image roughness;  // 1 channel; empty when constantRoughness was given
+  Image roughness;  // 1 channel; empty when readRoughness was false
   // Optional, for hits on glossy surfaces (TraceSettings::glossyHitRoughness): radiance without
   // the specular reflection, and the specular colour, 3 channels each.
   Image base, specular;
@@ -130,6 +133,10 @@ InputCheckReport checkInputConventions(const GBuffer& gbuffer, const GBufferSour
 // Near = half the nearest surface in `planarDepth` (no surface lost), far = infinity; the
 // projection's depth row is rebuilt to match (OpenGL layout).
 void fitClipPlanes(Camera& camera, const Image& planarDepth);
+
+// For clip planes a file gives: throws Error(InvalidInput) naming `cameraName` when a surface in
+// `planarDepth` lies nearer than the near plane or beyond the far plane.
+void checkClipPlanes(const Camera& camera, const Image& planarDepth, const std::string& cameraName);
 
 // Camera sidecar: {"view": 4x4 row-major world->camera, "projection": 4x4 row-major OpenGL clip,
 // "width": W, "height": H, optional "near", "far"}. Validated; errors name the file and field.

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs a build into a temporary prefix, then builds and runs tests/consumer against it, once
 # through find_package(ssrcl) and once through pkg-config; and checks that libssrcl.so exports
-# the API only.   tests/consumer/run.sh <build dir>
+# the API only; and that the installed CLI finds its bundled samples (share/ssrcl/samples), no
+# source path compiled in.   tests/consumer/run.sh <build dir>
 set -euo pipefail
 build=$(cd "$1" && pwd)
 src=$(cd "$(dirname "$0")" && pwd)
@@ -28,6 +29,12 @@ internal=$(nm -DC --defined-only "$libdir/libssrcl.so" | cut -d' ' -f3- | grep -
 if [[ -n $foreign || -n $internal ]]; then
   echo "libssrcl.so exports more than the API:"
   echo "$foreign$internal" | head -20
+  exit 1
+fi
+LD_LIBRARY_PATH=$libdir "$tmp/prefix/bin/ssrcl" bench --sample mirror --quality draft --tracers hiz --no-reference \
+  --repetitions 1 >/dev/null
+if strings "$tmp/prefix/bin/ssrcl" | grep -qF "$(cd "$src/../.." && pwd)"; then
+  echo "the installed CLI has the source directory compiled in"
   exit 1
 fi
 echo "consumer: built and ran against the installed package ($soname)"

@@ -275,6 +275,30 @@ class OutputArrayTest(unittest.TestCase):
         np.testing.assert_array_equal(p.output("reflection"), second)
         np.testing.assert_array_equal(first, kept)
 
+    def test_new_images_of_the_committed_shape_need_no_commit(self):
+        scene = PlaneMirror()
+        p = scene.traced()
+        first = p.output("reflection")  # a view held: execute() moves to a fresh pipeline
+        kept = first.copy()
+        p.setImage("color", scene.color * 2.0)
+        p.execute()
+        second = p.output("reflection")
+        np.testing.assert_array_equal(first, kept)
+        checked = scene.floor & (first[..., 3] == 1.0)
+        self.assertGreater(np.count_nonzero(checked), 1000)
+        np.testing.assert_allclose(second[checked, :3], 2.0 * first[checked, :3], rtol=1e-6)
+
+        p.setImage("depth", scene.depth[:-1])  # another size: commit() first
+        with self.assertRaisesRegex(ssrcl.InvalidOperationError, "'depth' changed from 96x64 with 1 channel to 96x63"):
+            p.execute()
+
+    def test_constant_roughness_is_optional(self):
+        self.assertIsNone(ssrcl.TraceSettings().constantRoughness)
+        scene = PlaneMirror()
+        p = scene.pipeline(ssrcl.TraceSettings(constantRoughness=1.5))
+        with self.assertRaisesRegex(ssrcl.InvalidArgumentError, "parameter roughness must be in"):
+            p.commit()
+
 
 class ErrorTest(unittest.TestCase):
     def test_unknown_preset(self):
@@ -361,7 +385,7 @@ class SettingsTest(unittest.TestCase):
                 changed[name] = not current
             elif isinstance(current, int):
                 changed[name] = current + 1
-            elif isinstance(current, float):
+            elif isinstance(current, float) or current is None:  # None: an unset optional number
                 changed[name] = 0.375 if current != 0.375 else 0.25
             else:
                 changed[name] = [v for v in type(current).__members__.values() if v != current][0]

@@ -2,11 +2,12 @@
 # End to end on a real scheduler: starts a single-node Slurm (munged, slurmctld, slurmd as root,
 # state in a temporary folder), runs samples/slurm/ssrcl-array.sbatch over a generated shot with
 # 4 array tasks, and checks every output against a local `ssrcl trace`; then cancels a job
-# mid-run, resubmits it, and checks that only the missing frames were computed.
-#   test_slurm_array.sh SSRCL MAKE_SEQUENCE SBATCH_SCRIPT
+# mid-run, resubmits it, and checks that only the missing frames were computed; last, checks a
+# mirror shot's outputs against each frame's exact reflections (independent truth).
+#   test_slurm_array.sh SSRCL MAKE_SEQUENCE CHECK_MIRROR_SEQUENCE SBATCH_SCRIPT
 # Exits 77 (skipped) where Slurm is not installed or cannot be started; KEEP=1 keeps the folder.
 set -euo pipefail
-ssrcl=$(realpath "$1") make_sequence=$(realpath "$2") script=$(realpath "$3")
+ssrcl=$(realpath "$1") make_sequence=$(realpath "$2") check_mirror=$(realpath "$3") script=$(realpath "$4")
 export PATH=$PATH:/usr/sbin:/sbin
 
 skip() { echo "SKIP: $*"; exit 77; }
@@ -163,4 +164,11 @@ wait_job "$job"
 [ "$(stat -c '%n %i' $(echo "$inodes" | cut -d' ' -f1))" = "$inodes" ] || fail "the rerun rewrote finished frames"
 matches_trace "$work/slow/shot.*.exr" "$work/out2" --quality reference --spp 64
 no_temporaries "$work/out2"
+
+# 3. A mirror shot (a camera orbiting 2 degrees a frame) in 2 array tasks: each output matches
+# its own frame's exact reflections.
+"$make_sequence" "$work/mirror" 4 160 90 >/dev/null
+job=$(submit "$work/reports/3" --array=0-1 "$script" "$work/mirror/shot.####.exr" "$work/out3/" --edge-fade 0)
+wait_job "$job"
+"$check_mirror" "$work/out3" 4 160 90 || { logs; fail "the array job's outputs do not match the exact reflections"; }
 echo "PASS"

@@ -20,17 +20,26 @@ std::vector<float> plane(const Image& image, int c) {
 
 }  // namespace
 
-std::string writeAnalyticSequence(const AnalyticSequence& s) {
+Scene sequenceScene(const AnalyticSequence& s) {
   Scene scene = makeScene(s.scene);
   if (s.roughness >= 0)
     for (Primitive& p : scene.primitives) p.material.roughness = s.roughness;
+  return scene;
+}
+
+Camera sequenceCamera(const AnalyticSequence& s, int index) {
+  ViewParams view = makeScene(s.scene).view;
+  const glm::dmat4 orbit = glm::rotate(glm::dmat4(1.0), glm::radians(index * s.degreesPerFrame), glm::dvec3(0, 1, 0));
+  view.eye = view.target + glm::dvec3(orbit * glm::dvec4(view.eye - view.target, 0.0));
+  return makeCamera(view, s.width, s.height);
+}
+
+std::string writeAnalyticSequence(const AnalyticSequence& s) {
+  const Scene scene = sequenceScene(s);
   std::filesystem::create_directories(s.directory);
   const std::string base = s.directory + "/" + s.prefix + ".";
   for (int i = 0; i < s.frameCount; ++i) {
-    ViewParams view = scene.view;
-    const glm::dmat4 orbit = glm::rotate(glm::dmat4(1.0), glm::radians(i * s.degreesPerFrame), glm::dvec3(0, 1, 0));
-    view.eye = view.target + glm::dvec3(orbit * glm::dvec4(view.eye - view.target, 0.0));
-    const Camera camera = makeCamera(view, s.width, s.height);
+    const Camera camera = sequenceCamera(s, i);
     const AnalyticGBuffer g = renderGBuffer(scene, camera);
 
     char number[16];

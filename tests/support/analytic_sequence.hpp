@@ -1,6 +1,8 @@
 #pragma once
 #include <string>
 
+#include "scenes/analytic_scene.hpp"
+
 namespace ssrcl::test {
 
 // A rendered shot made up: frames <directory>/<prefix>.<frame, 4 digits>.exr (Blender multilayer
@@ -19,5 +21,10 @@ struct AnalyticSequence {
 
 // Writes the frames; returns the pattern naming them ("<directory>/<prefix>.####.exr").
 std::string writeAnalyticSequence(const AnalyticSequence& sequence);
+
+// What the frames show: the scene (with the sequence's roughness) and frame `index`'s camera
+// (0 for the first frame), in double precision, for truth computed from them.
+Scene sequenceScene(const AnalyticSequence& sequence);
+Camera sequenceCamera(const AnalyticSequence& sequence, int index);
 
 }  // namespace ssrcl::test

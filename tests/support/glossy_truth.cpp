@@ -291,6 +291,25 @@ Scene makeGlossyScene(double floorRoughness) {
   return s;
 }
 
+Scene makeCreasedGlossyScene(double floorRoughness, double degrees) {
+  Scene s = makeGlossyScene(floorRoughness);
+  s.name = "glossy_panel_creased";
+  const Primitive flat = s.primitives[kGlossyFloor];
+  const double t = degrees * std::acos(-1.0) / 180.0, halfX = flat.halfSize.x, halfZ = flat.halfSize.z;
+  for (int side : {-1, 1}) {
+    // The half's centre lies halfway down its slope; u (its in-plane x axis) runs along the slope.
+    const dvec3 centre(side * 0.5 * halfX, -0.5 * halfX * std::tan(t), flat.center.z);
+    const dvec3 normal(side * std::sin(t), std::cos(t), 0.0);
+    const Primitive half = rectangle(side < 0 ? "floor_left" : "floor_right", centre, normal,
+                                     0.5 * halfX / std::cos(t), halfZ, flat.material);
+    if (side < 0)
+      s.primitives[kGlossyFloor] = half;
+    else
+      s.primitives.push_back(half);
+  }
+  return s;
+}
+
 dvec3 glossyPanelRadiance() { return {0.9, 0.55, 0.25}; }
 
 GlossyTruth glossyTruth(const Scene& scene, const Camera& camera, const AnalyticGBuffer& g, int receiver, int emitter,

@@ -85,6 +85,12 @@ inline constexpr int kGlossyFloor = 0;
 inline constexpr int kGlossyPanel = 1;
 Scene makeGlossyScene(double floorRoughness);
 glm::dvec3 glossyPanelRadiance();
+// The same with the floor folded into a ridge along x = 0: its halves (kGlossyFloor for x < 0,
+// kCreaseRightHalf for x > 0) slope down from it at `degrees`, so their normals differ by twice
+// that. Convex: neither half is in the way of the other's reflected rays (each lies below the
+// other's plane), so each half's truth is glossyTruth's for it alone.
+inline constexpr int kCreaseRightHalf = 2;
+Scene makeCreasedGlossyScene(double floorRoughness, double degrees);
 
 struct GlossyPixel {
   bool receiver = false;  // the pixel shows the floor

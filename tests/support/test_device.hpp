@@ -16,4 +16,10 @@ inline Device testDevice() {
   return Device(std::stoi(choice));
 }
 
+// That device, opened once per test program (a PoCL device costs a second to open).
+inline Device& sharedTestDevice() {
+  static Device d = testDevice();
+  return d;
+}
+
 }  // namespace ssrcl::test
