@@ -58,7 +58,7 @@ int runBatch(const BatchOptions& o) {
       toRun.push_back(&jobs[i]);
   }
   OutputRecord record{o.settings.quality, o.in.applyTo(o.settings.resolve()), "", o.in.form.form,
-                      o.settings.environment};
+                      o.settings.environment, {}};
   for (size_t i = 0; i < jobs.size() && !o.dryRun; ++i)
     if (outcomes[i].status == FrameStatus::Skipped)
       if (const std::string problem = resumeMismatch(jobs[i].output, jobs[i].input, o.out, record); !problem.empty())
