@@ -72,8 +72,10 @@ typedef struct {
   int max_iterations;
   int iterations;  // work done by this ray, for the counting mode
   int fetches;     // depth-buffer texels read (HZB texels, or a pixel's point and normal)
-  int behind;      // the ray passed behind a surface it did not hit (SSRCL_VIEWS only)
-  int thick;       // the hit was found within a surface's thickness (SSRCL_VIEWS only)
+  // SSRCL_VIEWS only: the ray was seen in front of a surface; it then passed behind one it did not
+  // hit (a ray that starts hidden, as from a surface a view sees from behind, is not held to it
+  // until it comes into view); its hit was found within a surface's thickness.
+  int seen, behind, thick;
 } TraceScene;
 
 // The ray's signed distance to a plane through p with normal n, times k = 1 / w (> 0 in front of
@@ -95,7 +97,12 @@ inline float hit_pixel(TraceScene* sc, const ScreenRay* ray, float3 dir, int2 ce
   int idx = cell.y * sc->size.x + cell.x;
   float4 pc = sc->positions[idx];
   *in_front = true;
-  if (pc.w >= SSRCL_NO_SURFACE) return -1.0f;
+  if (pc.w >= SSRCL_NO_SURFACE) {
+#if SSRCL_VIEWS
+    sc->seen = 1;  // over the sky
+#endif
+    return -1.0f;
+  }
   float3 n = sc->normals[idx].xyz;
   float g_in = plane_side(ray, t_in, pc.xyz, n), g_out = plane_side(ray, t_out, pc.xyz, n);
   *in_front = g_out > 0.0f;
@@ -108,7 +115,8 @@ inline float hit_pixel(TraceScene* sc, const ScreenRay* ray, float3 dir, int2 ce
     return t_in;
   }
 #if SSRCL_VIEWS
-  if (!*in_front) sc->behind = 1;
+  if (*in_front) sc->seen = 1;
+  else if (sc->seen) sc->behind = 1;
 #endif
   return -1.0f;
 }

@@ -97,7 +97,16 @@ __kernel void trace_views(ViewTraceParams params, __global const ViewCamera* vie
   if (!clip_to_frustum(proj, cam.near_plane, cam.far_plane, pk, dk, len, &u0, &u1)) return;
 
   const int2 size = (int2)(cam.width, cam.height);
-  TraceScene sc = {size, hzb, levels, params.level_count, positions, normals, thickness, params.max_iterations, 0, 0, 0, 0};
+  TraceScene sc = {size, hzb, levels, params.level_count, positions, normals, thickness, params.max_iterations, 0, 0, 0, 0, 0};
+  // Where the view shows the ray's origin, the ray is seen from its start: passing behind anything
+  // on its way puts its hit in doubt (a contact point the view does not see either). Where the
+  // origin is hidden (a surface seen from behind) or outside, only after it comes into view.
+  float4 ho = mat_mul(proj, (float4)(pk, 1.0f));
+  if (ho.w > 0.0f && fabs(ho.x) < ho.w && fabs(ho.y) < ho.w) {
+    int2 o = clamp(convert_int2(ndc_to_pixel(ho.xy / ho.w, size)), (int2)(0, 0), size - 1);
+    float shown = positions[o.y * size.x + o.x].w;
+    sc.seen = fabs(shown + pk.z) <= 0.02f * -pk.z;
+  }
   ScreenRay ray;
   int2 cell;
   float t = trace_segment(&sc, proj, params.linear_step, pk + dk * u0, pk + dk * u1, dk, &ray, &cell);
@@ -108,13 +117,22 @@ __kernel void trace_views(ViewTraceParams params, __global const ViewCamera* vie
   float3 hit_main = mat_mul(vload16(0, cam.to_main), (float4)(hit_k, 1.0f)).xyz;
   float distance = length(hit_main - p);
   float confidence = edge_confidence(ray_screen(&ray, t), size, params.edge_fade);
-  // Taken when the view sees more of the hit than the frame did, a nearer surface that the frame
-  // hid in front of the frame's hit, or a surface the ray crosses where the frame's hit was only
-  // within a thickness.
-  bool nearer = behind && distance < 0.98f * main_distance && confidence > 0.0f;
-  bool crossing = thick && !sc.thick && confidence > 0.0f;
+  // Taken when the view sees more of the hit than the frame did; or, where the frame's hit is in
+  // doubt, when the view sees the ray's whole way to its hit (it did not pass behind anything: a
+  // contact point hidden from the view too stays the frame's), nearer than a frame hit found
+  // behind a surface, or anywhere for one found only within a thickness.
+  bool clear = !sc.behind && confidence > 0.0f;
+  bool nearer = behind && clear && distance < 0.98f * main_distance;
+  bool crossing = thick && clear;
   if (!(confidence > fmax(h.w, 0.0f) || nearer || crossing)) return;
 
+  // The frame's own hit, confirmed: it keeps the frame's colour (its own render, at its own
+  // resolution) and the confidence the view adds.
+  if (hit && fabs(distance - main_distance) <= 0.02f * main_distance) {
+    ray_hit[record] = (float4)(h.xyz, fmax(h.w, confidence));
+    ray_state[record] = (uchar)(state & ~(SSRCL_RAY_BEHIND | SSRCL_RAY_THICK));
+    return;
+  }
   float nr_w = main_normals[i].w;
   float alpha = nr_w <= params.mirror_roughness ? 0.0f : fmax(roughness_to_alpha(nr_w, SSRCL_ROUGHNESS_MAPPING), 1e-4f);
   float4 color = hit_color(&sc, color_pyramid, proj, &ray, t, cell, distance, alpha, params.cone_scale);

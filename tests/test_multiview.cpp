@@ -140,9 +140,11 @@ TEST(Multiview, HiddenReflectionsComeFromAViewThatSeesThem) {
             << ", without " << without.fraction(without.exact) << " (found " << without.fraction(without.found)
             << ")\n";
   ASSERT_GT(with.pixels, 300u);
-  // Measured 0.948 with the view (591 pixels), 0.027 without (0.76 with the view before hits
-  // within a thickness continued in views too).
-  EXPECT_GE(with.fraction(with.exact), 0.94);
+  // Measured 0.777 with the view (591 pixels), 0.027 without. A view replaces a frame's doubtful
+  // hit only when it sees the ray's whole way (kernels/view_trace.cl); the rest pass behind another
+  // surface in the view too. Taking every view hit gives 0.948 here but -1.9 dB on the corpus's
+  // bump_floor (contact points hidden from every view took emitters seen past them).
+  EXPECT_GE(with.fraction(with.exact), 0.76);
   EXPECT_LE(without.fraction(without.exact), 0.05);
 }
 
