@@ -159,6 +159,7 @@ void Pipeline::Impl::run() {
   colors.enqueue(q, events);
   thickness.enqueue(q, s, events);
   viewStage.prepare(q, views, s, events);
+  if (!views.empty()) viewStage.limitRadiance(inputs.pixels("color"), frame.pixels(), colorChannels);
   const SetupStage::Counts counts = setup.readCounts(q);
   const int tiles = counts.listedTiles, batch = trace.batchSize();
   report(0.1);

@@ -1,5 +1,7 @@
 #include "view_stage.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <glm/gtc/matrix_inverse.hpp>
 
 #include "ssrcl/error.hpp"
@@ -109,6 +111,23 @@ void ViewStage::prepare(cl::CommandQueue& q, std::vector<ViewSource>& views, con
   }
 }
 
+void ViewStage::limitRadiance(const float* color, size_t pixels, int channels) {
+  std::vector<float> means;
+  means.reserve(pixels);
+  for (size_t i = 0; i < pixels; ++i) {
+    const float* c = color + i * channels;
+    const float m = (c[0] + c[1] + c[2]) / 3.0f;
+    if (std::isfinite(m)) means.push_back(std::max(m, 0.0f));
+  }
+  if (means.empty()) {
+    radianceLimit_ = 0.0f;
+    return;
+  }
+  const auto at = means.begin() + means.size() * 99 / 100;
+  std::nth_element(means.begin(), at, means.end());
+  radianceLimit_ = 2.0f * *at;
+}
+
 void ViewStage::trace(cl::CommandQueue& q, const TraceParams& batch, StageEvents& events) {
   ViewTraceParams p{};
   std::copy(std::begin(invProj_), std::end(invProj_), p.inv_proj);
@@ -123,6 +142,7 @@ void ViewStage::trace(cl::CommandQueue& q, const TraceParams& batch, StageEvents
   p.cone_scale = batch.cone_scale;
   p.linear_step = batch.linear_step;
   p.edge_fade = batch.edge_fade;
+  p.radiance_limit = radianceLimit_;
   const size_t range = roundUp(size_t(batch.listed) * batch.batch_size, 64);
   const int ranks = std::min<int>(SSRCL_VIEWS_PER_RAY, static_cast<int>(units_.size()));
   for (p.rank = 0; p.rank < ranks; ++p.rank) {

@@ -34,6 +34,11 @@ class ViewStage {
   void prepare(cl::CommandQueue& q, std::vector<ViewSource>& views, const TraceSettings& s, StageEvents& events);
   // The unresolved rays of one trace batch, in their views ("views" events).
   void trace(cl::CommandQueue& q, const TraceParams& batch, StageEvents& events);
+  // Caps the mean rgb of view hits at twice the frame's 99th percentile: as bright as the frame's
+  // lit surfaces may be, a light source may not. A lamp the frame does not show but a view does
+  // (a ceiling lamp above the camera) is met by the few rays of a lobe's tail: bright and rare, it
+  // adds speckle that costs more than the light it brings (docs/BENCHMARKS.md, wide_corridor).
+  void limitRadiance(const float* color, size_t pixels, int channels);
   size_t count() const { return units_.size(); }
 
  private:
@@ -50,6 +55,7 @@ class ViewStage {
   cl::Buffer cameras_;  // ViewCamera per view
   std::vector<int> colorChannels_;
   float invProj_[16] = {};
+  float radianceLimit_ = 0.0f;
   int width_ = 0, height_ = 0;
 };
 

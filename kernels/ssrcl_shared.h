@@ -132,6 +132,7 @@ typedef struct {
   ssrcl_int level_count;   // the view's HZB and colour levels
   ssrcl_int max_iterations;
   float mirror_roughness, cone_scale, linear_step, edge_fade;
+  float radiance_limit;    // a view hit's mean rgb is scaled down to at most this (ViewStage::limitRadiance)
 } ViewTraceParams;
 
 // kernels/resolve.cl (roughness mapping is a program define)

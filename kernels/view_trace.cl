@@ -135,8 +135,10 @@ __kernel void trace_views(ViewTraceParams params, __global const ViewCamera* vie
   }
   float nr_w = main_normals[i].w;
   float alpha = nr_w <= params.mirror_roughness ? 0.0f : fmax(roughness_to_alpha(nr_w, SSRCL_ROUGHNESS_MAPPING), 1e-4f);
-  float4 color = hit_color(&sc, color_pyramid, proj, &ray, t, cell, distance, alpha, params.cone_scale);
+  float3 color = sanitize_radiance3(hit_color(&sc, color_pyramid, proj, &ray, t, cell, distance, alpha, params.cone_scale).xyz);
+  float mean = (color.x + color.y + color.z) / 3.0f;
+  if (mean > params.radiance_limit) color *= params.radiance_limit / mean;
   ray_hit[record] = (float4)(hit_main, confidence);
-  ray_radiance[record] = (float4)(sanitize_radiance3(color.xyz), rad.w);
+  ray_radiance[record] = (float4)(color, rad.w);
   ray_state[record] = (uchar)((1 + params.view) << SSRCL_RAY_SOURCE_SHIFT);
 }
