@@ -194,4 +194,32 @@ TEST(Multiview, BadViewsAreNamed) {
   EXPECT_THROW(p.setView(2, wrong.g, wrong.camera), ssrcl::Error);  // indices are contiguous
 }
 
+// A frame too large for the device, with views: the out-of-memory error lists them with their
+// sizes, since they share the device memory. The frame's images are views of one small buffer:
+// commit() checks the memory before it reads a pixel.
+TEST(Multiview, OutOfMemoryNamesTheViews) {
+  const Scene scene = makeScene("spheres_on_mirror");
+  const View side = renderView(scene, scene.view, 64, 36), back = renderView(scene, scene.view, 32, 18);
+  const int size = 32768;  // 1 Gi pixels, the most a frame may have: 16 GiB for the output's RGBA alone
+  std::vector<float> pixel(4, 0.0f);
+  const auto huge = [&](int channels) { return ssrcl::ImageView(pixel.data(), size, size, channels); };
+  ssrcl::Device device = testDevice();
+  ssrcl::Pipeline p(device);
+  p.setImage("color", huge(3));
+  p.setImage("depth", huge(1));
+  p.setImage("normal", huge(3));
+  p.setImage("roughness", huge(1));
+  p.setCamera(makeCamera(scene.view, size, size));
+  p.setView(0, side.g, side.camera, "side.exr");
+  p.setView(1, back.g, back.camera);
+  try {
+    p.commit();
+    FAIL() << "a 32768x32768 frame fitted";
+  } catch (const ssrcl::Error& e) {
+    EXPECT_EQ(e.code(), ssrcl::ErrorCode::OutOfMemory) << e.what();
+    const std::string m = e.what();
+    EXPECT_NE(m.find("32768x32768 frame with views side.exr (64x36), view 2 (32x18)"), std::string::npos) << m;
+  }
+}
+
 }  // namespace
