@@ -40,6 +40,10 @@ struct Pipeline::Impl {
   int colorChannels = 0;
   bool hasBase = false;
   size_t committedViews = 0;
+  // The views' images are uploaded and their setup, HZB, colours and thickness computed once, at
+  // the first execute() after setView/clearViews or a commit that changed kernels or buffers: a
+  // batch's frames share them.
+  bool viewsPrepared = false;
 
   DeviceBuffers buffers;
   SetupStage setup;
@@ -114,6 +118,7 @@ void Pipeline::Impl::plan() {
     what += (k == 0 ? " with views " : ", ") + ViewStage::name(views[k], static_cast<int>(k)) + " (" +
             std::to_string(views[k].camera.width) + "x" + std::to_string(views[k].camera.height) + ")";
   const bool reallocated = buffers.allocate(d, what);
+  if (reconfigure || reallocated) viewsPrepared = false;
   // Views' cameras are written at bind: with views, every commit binds.
   if (!reconfigure && !reshaped && !reallocated && views.empty()) return;  // the same kernels and buffers, bound
 
@@ -158,7 +163,8 @@ void Pipeline::Impl::run() {
   hzb.enqueue(q, events);
   colors.enqueue(q, events);
   thickness.enqueue(q, s, events);
-  viewStage.prepare(q, views, s, events);
+  if (!viewsPrepared) viewStage.prepare(q, views, s, events);
+  viewsPrepared = true;
   if (!views.empty()) viewStage.limitRadiance(inputs.pixels("color"), frame.pixels(), colorChannels);
   const SetupStage::Counts counts = setup.readCounts(q);
   const int tiles = counts.listedTiles, batch = trace.batchSize();
@@ -266,11 +272,13 @@ void Pipeline::setView(int index, const GBuffer& gbuffer, const Camera& camera, 
   source.label = label;
   if (index == viewCount()) impl_->views.push_back(std::move(source));
   else impl_->views[index] = std::move(source);
+  impl_->viewsPrepared = false;
   impl_->committed = false;
 }
 
 void Pipeline::clearViews() {
   impl_->views.clear();
+  impl_->viewsPrepared = false;
   impl_->committed = false;
 }
 

@@ -175,7 +175,9 @@ class Pipeline {
   // continue in up to 3 views, those that hold the ray's origin and that it heads into first,
   // traced the same way against each view's own depth; the hit's colour is the view's. A is then
   // the fraction of the lobe found in any view, and output("view") says where (see there).
-  // `label` names the view in messages (e.g. its file). The G-buffer must stay alive until execute().
+  // `label` names the view in messages (e.g. its file). The G-buffer must stay alive until execute(),
+  // which reads it once: later executes (other frames, through commits that keep the settings and
+  // sizes) reuse what the view uploaded; setView again after changing its pixels.
   void setView(int index, const GBuffer& gbuffer, const Camera& camera, const std::string& label = {});
   void clearViews();
   int viewCount() const;

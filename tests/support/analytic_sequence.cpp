@@ -30,6 +30,7 @@ std::string writeAnalyticSequence(const AnalyticSequence& s) {
     ViewParams view = scene.view;
     const glm::dmat4 orbit = glm::rotate(glm::dmat4(1.0), glm::radians(i * s.degreesPerFrame), glm::dvec3(0, 1, 0));
     view.eye = view.target + glm::dvec3(orbit * glm::dvec4(view.eye - view.target, 0.0));
+    if (s.fovYDegrees > 0) view.fovYDegrees = s.fovYDegrees;
     const Camera camera = makeCamera(view, s.width, s.height);
     const AnalyticGBuffer g = renderGBuffer(scene, camera);
 
