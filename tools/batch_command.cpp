@@ -135,13 +135,9 @@ Action addBatchCommand(CLI::App& app) {
                   "One camera JSON for all frames, or a pattern/{stem} template (default: <stem>.camera.json beside "
                   "each frame, else the frame's EXR header camera)");
   cmd->add_option("--device", o->device, "OpenCL device: index from `ssrcl devices`, cpu, gpu or default");
-  cmd->add_option("--view", o->views,
-                  "Auxiliary view shared by every frame: a G-buffer EXR of the same (static) scene from another "
-                  "camera (repeatable), read and uploaded once; as `ssrcl trace --view`")
-      ->allow_extra_args(false);
-  cmd->add_option("--view-camera", o->viewCameras,
-                  "Camera JSON of the --view in the same place (default: its sidecar, else its EXR header)")
-      ->allow_extra_args(false);
+  addViewOptions(*cmd, o->views, o->viewCameras,
+                 "Auxiliary view shared by every frame: a G-buffer EXR of the same (static) scene from another "
+                 "camera (repeatable), read and uploaded once; as `ssrcl trace --view`");
   cmd->add_option("--shard", o->shard,
                   "K/N: process only share K (0-based) of N, e.g. $SLURM_ARRAY_TASK_ID/$SLURM_ARRAY_TASK_COUNT")
       ->capture_default_str();

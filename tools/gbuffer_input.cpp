@@ -157,6 +157,14 @@ Views loadViews(const GBufferInputOptions& o, const std::vector<std::string>& fi
   return views;
 }
 
+void addViewOptions(CLI::App& cmd, std::vector<std::string>& files, std::vector<std::string>& cameras,
+                    const std::string& viewHelp) {
+  cmd.add_option("--view", files, viewHelp)->allow_extra_args(false);
+  cmd.add_option("--view-camera", cameras,
+                 "Camera JSON of the --view in the same place (default: its sidecar, else its EXR header)")
+      ->allow_extra_args(false);
+}
+
 void setViews(Pipeline& pipeline, const Views& views) {
   pipeline.clearViews();
   for (size_t k = 0; k < views.frames.size(); ++k)

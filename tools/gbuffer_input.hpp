@@ -63,6 +63,9 @@ struct Views {
 };
 Views loadViews(const GBufferInputOptions& o, const std::vector<std::string>& files,
                 const std::vector<std::string>& cameras);
+// --view (help `viewHelp`) and --view-camera.
+void addViewOptions(CLI::App& cmd, std::vector<std::string>& files, std::vector<std::string>& cameras,
+                    const std::string& viewHelp);
 // Gives the pipeline the views, labelled by their files; `views` must stay alive until execute().
 void setViews(Pipeline& pipeline, const Views& views);
 

@@ -88,13 +88,9 @@ Action addTraceCommand(CLI::App& app) {
       ->required();
   cmd->add_option("--camera", o->camera, "Camera JSON (default: <input stem>.camera.json beside the input, else the EXR header's camera)");
   cmd->add_option("--device", o->device, "OpenCL device: index from `ssrcl devices`, cpu, gpu or default");
-  cmd->add_option("--view", o->views,
-                  "Auxiliary view: a G-buffer EXR of the same scene from another camera (repeatable); rays that "
-                  "leave the frame or pass behind a surface continue in the views")
-      ->allow_extra_args(false);
-  cmd->add_option("--view-camera", o->viewCameras,
-                  "Camera JSON of the --view in the same place (default: its sidecar, else its EXR header)")
-      ->allow_extra_args(false);
+  addViewOptions(*cmd, o->views, o->viewCameras,
+                 "Auxiliary view: a G-buffer EXR of the same scene from another camera (repeatable); rays that "
+                 "leave the frame or pass behind a surface continue in the views");
   addChannelOptions(*cmd, o->in);
   addPassFileOptions(*cmd, o->in);
   addSettingsOptions(*cmd, o->settings);
