@@ -6,6 +6,8 @@
 //
 //   ssrcl_score_corpus --corpus samples/corpus [--configs medium,high,...] [--scenes a,b] [--json out.json]
 //   ssrcl_score_corpus render.exr ... [--configs ...]   (renders of one's own, split "file")
+//   ssrcl_score_corpus --scenes interior_room --configs "medium;medium:views=all" [--views DIR]
+//       (auxiliary views, default samples/corpus/views)
 //   ssrcl_score_corpus --corpus samples/corpus/environment --environment samples/corpus/environment/sky.exr
 //       --configs "medium;medium:fill=0;eevee"   (environment fill: filled, premultiplied, EEVEE)
 //
@@ -18,10 +20,13 @@
 // stride, iterations, form (incident, the default: our pass times E(F0 = 1) here; glossy-pass: the
 // pass `ssrcl trace --output-form glossy-pass` writes, compared with Cycles as it is, F0 from the
 // render's base_color / metallic AOVs where it has them, else 1 as the corpus's reflectors have).
+// views (auxiliary views: the first N of <views dir>/<scene>.*.exr in name order, "all" every one;
+// samples/blender/make_views.py renders them; default 0),
 // "eevee" scores Blender EEVEE's own SSR (<scene>.eevee.exr) where it exists.
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -46,6 +51,7 @@ struct Config {
   bool glossyPasses = true;  // base and specular from the render's glossy passes, as `ssrcl trace` reads them
   bool glossyPassForm = false;  // score the glossy-pass output form
   bool fill = true;             // with --environment: misses take it (fill=0: the premultiplied pass)
+  size_t views = 0;             // auxiliary views used (SIZE_MAX: all found)
   ssrcl::TraceSettings settings;
 };
 
@@ -110,6 +116,8 @@ Config parseConfig(const std::string& spec) {
       c.glossyPassForm = value == "glossy-pass";
     } else if (key == "fill") {
       c.fill = value == "1";
+    } else if (key == "views") {
+      c.views = value == "all" ? SIZE_MAX : std::stoul(value);
     } else if (key == "iterations") {
       s.maxIterations = std::stoi(value);
     } else {
@@ -130,6 +138,32 @@ std::vector<Scene> loadScenes(const std::string& corpus, const std::vector<std::
     scenes.push_back({name, s.at("split"), corpus + "/" + name + ".exr"});
   }
   return scenes;
+}
+
+// A scene's auxiliary views: <dir>/<scene>.*.exr in name order, each with its camera sidecar.
+struct SceneViews {
+  std::vector<std::string> files;
+  std::vector<ssrcl::GBuffer> gbuffers;
+  std::vector<ssrcl::Camera> cameras;
+};
+
+SceneViews loadSceneViews(const std::string& dir, const std::string& scene) {
+  SceneViews v;
+  std::error_code ec;
+  for (const auto& entry : std::filesystem::directory_iterator(dir, ec)) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind(scene + ".", 0) == 0 && entry.path().extension() == ".exr") v.files.push_back(entry.path().string());
+  }
+  std::sort(v.files.begin(), v.files.end());
+  for (const std::string& f : v.files) {
+    ssrcl::GBufferSource source;
+    source.file = f;
+    source.glossyPasses = false;
+    v.gbuffers.push_back(ssrcl::loadGBuffer(source));
+    const std::filesystem::path p(f);
+    v.cameras.push_back(ssrcl::loadCameraJson((p.parent_path() / (p.stem().string() + ".camera.json")).string()));
+  }
+  return v;
 }
 
 // EEVEE's Specular Light pass is the same quantity as ours with A = 1 everywhere it rendered.
@@ -183,7 +217,7 @@ int main(int argc, char** argv) {
   CLI::App app{"Scores ssrcl configurations against Cycles over a corpus of scenes"};
   std::string corpus = std::string(SSRCL_SOURCE_DIR) + "/samples/corpus", jsonPath, plotPath;
   std::string configList = "draft,medium,high,reference,eevee", sceneList;
-  std::string dumpDir, environmentPath;
+  std::string dumpDir, environmentPath, viewsDir;
   std::vector<std::string> files;
   int repetitions = 1;
   app.add_option("files", files, "Renders to score instead of the corpus (Blender passes, IndexOB 1 = reflector)");
@@ -195,6 +229,7 @@ int main(int argc, char** argv) {
   app.add_option("--plot", plotPath, "Write the corpus mean error against time as SVG");
   app.add_option("--environment", environmentPath,
                  "Environment fill from this equirect EXR (the scenes' HDRI; configs with fill=0 go without)");
+  app.add_option("--views", viewsDir, "Auxiliary views of each scene: <dir>/<scene>.*.exr (default <corpus>/views)");
   app.add_option("--dump", dumpDir, "Write <scene>.<config index>.ppm: ours, Cycles and |difference| side by side");
   CLI11_PARSE(app, argc, argv);
 
@@ -232,6 +267,7 @@ int main(int argc, char** argv) {
       }
       ssrcl::test::CyclesReference unscaled = ref;
       std::fill(unscaled.scale.begin(), unscaled.scale.end(), 1.0);
+      const SceneViews views = loadSceneViews(viewsDir.empty() ? corpus + "/views" : viewsDir, scenes[s].name);
       ssrcl::Pipeline pipeline(device);
       pipeline.setGBuffer(ref.gbuffer);
       pipeline.setCamera(ref.camera);
@@ -251,6 +287,12 @@ int main(int argc, char** argv) {
         pipeline.settings() = configs[c].settings;
         const ssrcl::EnvironmentMap noEnvironment;
         pipeline.setEnvironment(configs[c].fill ? environment : noEnvironment);
+        pipeline.clearViews();
+        if (configs[c].views != SIZE_MAX && configs[c].views > views.files.size())
+          throw std::runtime_error(scenes[s].name + ": " + configs[c].label + " asks for more views than the " +
+                                   std::to_string(views.files.size()) + " found");
+        for (size_t k = 0; k < std::min(configs[c].views, views.files.size()); ++k)
+          pipeline.setView(int(k), views.gbuffers[k], views.cameras[k], views.files[k]);
         pipeline.commit();
         score.ms = INFINITY;
         for (int r = 0; r < std::max(1, repetitions); ++r) {

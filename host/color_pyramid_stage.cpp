@@ -22,9 +22,17 @@ void ColorPyramidStage::plan(DeviceBuffers& buffers, const FrameShape& frame) {
   buffers.add(counts_, reduce_ ? frame.pixels() * sizeof(cl_int) : 0);
 }
 
+void ColorPyramidStage::bind(const HzbStage& hzb) {
+  if (reduce_) bindArgs(reduce_kernel_, 0, pyramid, hzb.levels);
+}
+
+void ColorPyramidStage::reduce(cl::CommandQueue& q, StageEvents& events) {
+  if (reduce_) reducePyramid(q, reduce_kernel_, frame_, events, "color_mips");
+}
+
 void ColorPyramidStage::bind(const HzbStage& hzb, const SetupStage& setup, const TraceStage& trace) {
+  bind(hzb);
   if (!reduce_) return;
-  bindArgs(reduce_kernel_, 0, pyramid, hzb.levels);
   bindArgs(count_, 1, setup.rayList, setup.pixelRays, trace.rayRadiance, counts_);
   bindArgs(weights_, 1, pyramid, counts_);
   bindArgs(lookup_, 1, setup.rayList, setup.pixelRays, pyramid, hzb.levels, trace.rayRadiance);

@@ -15,6 +15,9 @@ class ColorPyramidStage {
   void configure(Device::Impl& device, const TraceSettings& s);
   void plan(DeviceBuffers& buffers, const FrameShape& frame);
   void bind(const HzbStage& hzb, const SetupStage& setup, const TraceStage& trace);
+  // A pyramid read at once, with the weights setup wrote (an auxiliary view's: no hit counts).
+  void bind(const HzbStage& hzb);
+  void reduce(cl::CommandQueue& q, StageEvents& events);
   // Clears the hit counts before the first batch.
   void enqueue(cl::CommandQueue& q, StageEvents& events);
   // After a batch (the trace's own parameters): counts its hits, reduces, looks the hits up.

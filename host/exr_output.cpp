@@ -138,6 +138,10 @@ void buildOutput(const Image& rgba, const Image& distance, const ReflectionExrOp
   try {
     for (int c = 0; c < 4; ++c) addPassChannel(out, prefix + names[c], &rgba.data[c], 4, count, options.half);
     addPassChannel(out, prefix + "distance", distance.data.data(), 1, count, options.half);
+    if (options.view) {
+      addPassChannel(out, prefix + "view", &options.view->data[0], 2, count, options.half);
+      addPassChannel(out, prefix + "view_share", &options.view->data[1], 2, count, options.half);
+    }
   } catch (const Error& e) {
     throw Error(e.code(), (options.appendTo.empty() ? "" : options.appendTo + ": ") + e.what());
   }
@@ -178,6 +182,9 @@ void writeReflectionExr(const std::string& path, const Image& rgba, const Image&
                     std::to_string(rgba.channels) + " and " + std::to_string(distance.width) + "x" +
                     std::to_string(distance.height) + "x" + std::to_string(distance.channels) + ")");
   }
+  if (options.view && (!wellFormed(*options.view, 2) || options.view->width != rgba.width ||
+                       options.view->height != rgba.height))
+    throw Error(ErrorCode::InvalidArgument, path + ": the view image must have 2 channels and the pass's size");
   const PixelBox whole{0, 0, rgba.width - 1, rgba.height - 1};
   const ExrWindows written = options.windows.value_or(ExrWindows{whole, whole});
   if (written.data.width() != rgba.width || written.data.height() != rgba.height || written.display.width() <= 0 ||

@@ -14,6 +14,7 @@
 #include "ssrcl/error.hpp"
 #include "thickness_stage.hpp"
 #include "trace_stage.hpp"
+#include "view_stage.hpp"
 
 namespace ssrcl {
 
@@ -29,6 +30,7 @@ struct Pipeline::Impl {
   ProgressMonitor progress;
   const EnvironmentMap* environment = nullptr;  // null: no environment fill
   bool environmentChanged = false;
+  std::vector<ViewSource> views;
 
   // What the last commit planned: execute() replans when the settings differ.
   bool committed = false;  // false again after the camera, outputs or environment change
@@ -38,6 +40,11 @@ struct Pipeline::Impl {
   int colorChannels = 0;
   bool hasBase = false;
   std::map<std::string, PipelineInputs::Shape> committedInputs;  // new images of these shapes need no commit
+  size_t committedViews = 0;
+  // The views' images are uploaded and their setup, HZB, colours and thickness computed once, at
+  // the first execute() after setView/clearViews or a commit that changed kernels or buffers: a
+  // batch's frames share them.
+  bool viewsPrepared = false;
 
   DeviceBuffers buffers;
   SetupStage setup;
@@ -48,9 +55,10 @@ struct Pipeline::Impl {
   ResolveStage resolve;
   FilterStage filter;
   EnvironmentStage environmentFill;
-  cl::Buffer outRgba, outDistance;
+  ViewStage viewStage;
+  cl::Buffer outRgba, outDistance, outView;
 
-  Image reflection, distance;
+  Image reflection, distance, view;
   StageTimes times;
   const char* stage = "setup";  // what run() is enqueuing: an OpenCL error names it
 
@@ -67,18 +75,22 @@ void Pipeline::Impl::plan() {
   validateCamera(camera, "camera");
   validateSettings(settings);
   inputs.validate(camera, settings);
+  for (size_t k = 0; k < views.size(); ++k) ViewStage::validate(views[k], static_cast<int>(k), settings);
 
   Device::Impl& d = DeviceAccess::impl(device);
   const int channels = inputs.view("color").channels;
   const bool base = inputs.has("base");
-  const bool reconfigure = !configured || settings != committedSettings || base != hasBase || environmentChanged;
+  const bool reconfigure = !configured || settings != committedSettings || base != hasBase || environmentChanged ||
+                           views.size() != committedViews;
+  const int viewCount = static_cast<int>(views.size());
   if (reconfigure) {
     setup.configure(d);
     thickness.configure(d, settings);
     hzb.configure(d);
     colors.configure(d, settings);
-    trace.configure(d, settings, base);
-    resolve.configure(d, settings);
+    trace.configure(d, settings, base, viewCount > 0);
+    resolve.configure(d, settings, viewCount);
+    viewStage.configure(d, settings, views.size());
     filter.configure(d, settings);
     environmentFill.configure(d, settings, environment);
     configured = true;
@@ -90,6 +102,7 @@ void Pipeline::Impl::plan() {
   hasBase = base;
   committedSettings = settings;
   committedInputs = inputs.shapes();
+  committedViews = views.size();
 
   setup.plan(buffers, frame, colorChannels, !settings.constantRoughness);
   thickness.plan(buffers, frame);
@@ -101,9 +114,16 @@ void Pipeline::Impl::plan() {
   environmentFill.plan(buffers, frame);
   buffers.add(outRgba, frame.pixels() * sizeof(cl_float4), CL_MEM_WRITE_ONLY);
   buffers.add(outDistance, frame.pixels() * sizeof(float), CL_MEM_WRITE_ONLY);
-  const bool reallocated =
-      buffers.allocate(d, "a " + std::to_string(frame.width) + "x" + std::to_string(frame.height) + " frame");
-  if (!reconfigure && !reshaped && !reallocated) return;  // the same kernels and buffers, bound already
+  viewStage.plan(buffers, views);
+  buffers.add(outView, viewCount > 0 ? frame.pixels() * sizeof(cl_float2) : 0, CL_MEM_WRITE_ONLY);
+  std::string what = "a " + std::to_string(frame.width) + "x" + std::to_string(frame.height) + " frame";
+  for (size_t k = 0; k < views.size(); ++k)
+    what += (k == 0 ? " with views " : ", ") + ViewStage::name(views[k], static_cast<int>(k)) + " (" +
+            std::to_string(views[k].camera.width) + "x" + std::to_string(views[k].camera.height) + ")";
+  const bool reallocated = buffers.allocate(d, what);
+  if (reconfigure || reallocated) viewsPrepared = false;
+  // Views' cameras are written at bind: with views, every commit binds.
+  if (!reconfigure && !reshaped && !reallocated && views.empty()) return;  // the same kernels and buffers, bound
 
   setup.bind(hzb.hzb, colors.pyramid);
   thickness.bind(setup);
@@ -112,13 +132,16 @@ void Pipeline::Impl::plan() {
   trace.bind(setup, hzb, colors);
   // With the filter on, the resolve writes to an intermediate the filter reads.
   resolve.bind(setup, trace, filter.enabled() ? filter.resolvedRgba : outRgba,
-               filter.enabled() ? filter.resolvedDistance : outDistance);
+               filter.enabled() ? filter.resolvedDistance : outDistance, outView);
   filter.bind(setup, outRgba, outDistance);
   environmentFill.bind(d.queue, setup, outRgba);
+  viewStage.bind(d.queue, camera, views, setup, trace);
   if (reflection.width != frame.width || reflection.height != frame.height) {
     reflection = Image(frame.width, frame.height, 4);
     distance = Image(frame.width, frame.height, 1);
   }
+  if (viewCount == 0) view = Image();
+  else if (view.width != frame.width || view.height != frame.height) view = Image(frame.width, frame.height, 2);
 }
 
 void Pipeline::Impl::report(double fraction) {
@@ -147,13 +170,17 @@ void Pipeline::Impl::run() {
   colors.enqueue(q, events);
   stage = "thickness";
   thickness.enqueue(q, s, events);
+  stage = "views";
+  if (!viewsPrepared) viewStage.prepare(q, views, s, events);
+  viewsPrepared = true;
+  if (!views.empty()) viewStage.limitRadiance(inputs.pixels("color"), frame.pixels(), colorChannels);
   stage = "setup";
   const SetupStage::Counts counts = setup.readCounts(q);
   const int tiles = counts.listedTiles, batch = trace.batchSize();
   report(0.1);
 
   TraceParams traceParams = TraceStage::params(frame, cam, s, hasBase);
-  ResolveParams resolveParams = ResolveStage::params(frame, cam, s);
+  ResolveParams resolveParams = ResolveStage::params(frame, cam, s, static_cast<int>(views.size()));
   traceParams.listed = counts.listedPixels;
   traceParams.batch_size = resolveParams.batch_size = batch;
   for (int first = 0; tiles > 0 && first < s.samplesPerPixel; first += batch) {
@@ -163,8 +190,11 @@ void Pipeline::Impl::run() {
     stage = "trace";
     if (counts.listedPixels > 0) {
       trace.enqueue(q, traceParams, events);
+      // The frame's prefiltered hits are looked up before the views may replace doubtful ones.
       stage = "color_mips";
       colors.prefilterHits(q, traceParams, events);
+      stage = "views";
+      viewStage.trace(q, traceParams, events);
     }
     stage = "resolve";
     resolve.accumulate(q, resolveParams, tiles, events);
@@ -176,6 +206,9 @@ void Pipeline::Impl::run() {
     q.enqueueFillBuffer(outRgba, cl_float4{{0, 0, 0, 0}}, 0, frame.pixels() * sizeof(cl_float4), nullptr,
                         newEvent(events, "resolve"));
     q.enqueueFillBuffer(outDistance, 0.0f, 0, frame.pixels() * sizeof(float), nullptr, newEvent(events, "resolve"));
+    if (!views.empty())
+      q.enqueueFillBuffer(outView, cl_float2{{-1.0f, 0.0f}}, 0, frame.pixels() * sizeof(cl_float2), nullptr,
+                          newEvent(events, "resolve"));
   }
   if (tiles > 0) resolve.finalize(q, resolveParams, tiles, events);
   stage = "filter";
@@ -187,6 +220,9 @@ void Pipeline::Impl::run() {
                       newEvent(events, "download"));
   q.enqueueReadBuffer(outDistance, CL_FALSE, 0, frame.pixels() * sizeof(float), distance.data.data(), nullptr,
                       newEvent(events, "download"));
+  if (!views.empty())
+    q.enqueueReadBuffer(outView, CL_FALSE, 0, frame.pixels() * sizeof(cl_float2), view.data.data(), nullptr,
+                        newEvent(events, "download"));
   q.finish();
 
   trace.readWork(q, times);
@@ -195,7 +231,8 @@ void Pipeline::Impl::run() {
   times.resolvedTiles = tiles;
   times.ms.clear();
   for (const char* stage :
-       {"upload", "setup", "hzb", "color_mips", "thickness", "trace", "resolve", "denoise", "environment", "download"})
+       {"upload", "setup", "hzb", "color_mips", "thickness", "trace", "views", "resolve", "denoise", "environment",
+        "download"})
     times.ms[stage] = 0.0;
   for (const auto& [stage, list] : events)
     for (const cl::Event& e : list) times.ms[stage] += eventMs(e);
@@ -234,6 +271,31 @@ void Pipeline::setGBuffer(const GBuffer& gbuffer) {
   if (!gbuffer.base.empty()) setImage("base", gbuffer.base);
   if (!gbuffer.specular.empty()) setImage("specular", gbuffer.specular);
 }
+
+void Pipeline::setView(int index, const GBuffer& gbuffer, const Camera& camera, const std::string& label) {
+  if (index < 0 || index > viewCount() || index >= SSRCL_MAX_VIEWS)
+    throw Error(ErrorCode::InvalidArgument, "pipeline: view index " + std::to_string(index) + " out of range (0.." +
+                                                std::to_string(std::min(viewCount(), SSRCL_MAX_VIEWS - 1)) + ")");
+  ViewSource source;
+  source.inputs.set("color", gbuffer.color);
+  source.inputs.set("depth", gbuffer.depth);
+  source.inputs.set("normal", gbuffer.normal);
+  if (!gbuffer.roughness.empty()) source.inputs.set("roughness", gbuffer.roughness);
+  source.camera = camera;
+  source.label = label;
+  if (index == viewCount()) impl_->views.push_back(std::move(source));
+  else impl_->views[index] = std::move(source);
+  impl_->viewsPrepared = false;
+  impl_->committed = false;
+}
+
+void Pipeline::clearViews() {
+  impl_->views.clear();
+  impl_->viewsPrepared = false;
+  impl_->committed = false;
+}
+
+int Pipeline::viewCount() const { return static_cast<int>(impl_->views.size()); }
 
 void Pipeline::setCamera(const Camera& camera) {
   impl_->camera = camera;
@@ -286,7 +348,9 @@ void Pipeline::execute() {
 const Image& Pipeline::output(const std::string& name) const {
   if (name == "reflection") return impl_->reflection;
   if (name == "distance") return impl_->distance;
-  throw Error(ErrorCode::InvalidArgument, "unknown output image '" + name + "' (expected reflection or distance)");
+  if (name == "view") return impl_->view;
+  throw Error(ErrorCode::InvalidArgument,
+              "unknown output image '" + name + "' (expected reflection, distance or view)");
 }
 
 const StageTimes& Pipeline::stageTimes() const { return impl_->times; }

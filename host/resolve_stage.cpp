@@ -4,9 +4,11 @@ namespace ssrcl::detail {
 
 cl::NDRange listedTiles(int tiles) { return cl::NDRange(size_t(tiles) * SSRCL_TILE, SSRCL_TILE); }
 
-void ResolveStage::configure(Device::Impl& device, const TraceSettings& s) {
-  const cl::Program& program =
-      device.program({"ssrcl_shared.h", "common.cl", "ggx.cl", "resolve.cl"}, {roughnessMappingDefine(s.roughnessMapping)});
+void ResolveStage::configure(Device::Impl& device, const TraceSettings& s, int views) {
+  views_ = views;
+  std::vector<std::string> defines = {roughnessMappingDefine(s.roughnessMapping)};
+  if (views > 0) defines.push_back("SSRCL_VIEWS=1");
+  const cl::Program& program = device.program({"ssrcl_shared.h", "common.cl", "ggx.cl", "resolve.cl"}, defines);
   accumulate_ = cl::Kernel(program, "resolve_accumulate");
   finalize_ = cl::Kernel(program, "resolve_finalize");
 }
@@ -15,16 +17,18 @@ void ResolveStage::plan(DeviceBuffers& buffers, const FrameShape& frame) {
   frame_ = frame;
   buffers.add(radiance_, frame.pixels() * sizeof(cl_float4));
   buffers.add(weight_, frame.pixels() * sizeof(cl_float2));
+  buffers.add(sources_, views_ > 0 ? frame.pixels() * (views_ + 1) * sizeof(float) : 0);
 }
 
 void ResolveStage::bind(const SetupStage& setup, const TraceStage& trace, const cl::Buffer& rgba,
-                        const cl::Buffer& distance) {
+                        const cl::Buffer& distance, const cl::Buffer& view) {
   bindArgs(accumulate_, 1, setup.tileList, setup.positions, setup.normals, setup.pixelRays, trace.rayHit,
-           trace.rayRadiance, radiance_, weight_);
-  bindArgs(finalize_, 1, setup.tileList, radiance_, weight_, rgba, distance);
+           trace.rayRadiance, radiance_, weight_, trace.rayState, sources_);
+  bindArgs(finalize_, 1, setup.tileList, radiance_, weight_, rgba, distance, sources_, view);
 }
 
-ResolveParams ResolveStage::params(const FrameShape& frame, const CameraConstants& camera, const TraceSettings& s) {
+ResolveParams ResolveStage::params(const FrameShape& frame, const CameraConstants& camera, const TraceSettings& s,
+                                   int views) {
   ResolveParams p{};
   std::copy(std::begin(camera.invProj), std::end(camera.invProj), p.inv_proj);
   p.width = frame.width;
@@ -32,6 +36,7 @@ ResolveParams ResolveStage::params(const FrameShape& frame, const CameraConstant
   p.tiles_x = frame.tilesX;
   p.mirror_roughness = s.mirrorRoughness;
   p.reuse_radius = s.reuseRadius;
+  p.view_count = views;
   return p;  // batch_size and first_sample are per batch
 }
 

@@ -8,19 +8,24 @@ namespace ssrcl::detail {
 
 class ResolveStage {
  public:
-  void configure(Device::Impl& device, const TraceSettings& s);
+  // With views > 0 it also sums the found weight per ray source into `view` (kernels/resolve.cl).
+  void configure(Device::Impl& device, const TraceSettings& s, int views);
   void plan(DeviceBuffers& buffers, const FrameShape& frame);
-  // `rgba` and `distance` receive the result (the outputs, or the filter's input).
-  void bind(const SetupStage& setup, const TraceStage& trace, const cl::Buffer& rgba, const cl::Buffer& distance);
-  static ResolveParams params(const FrameShape& frame, const CameraConstants& camera, const TraceSettings& s);
+  // `rgba` and `distance` receive the result (the outputs, or the filter's input), `view` the
+  // source index and share of views per pixel (with views).
+  void bind(const SetupStage& setup, const TraceStage& trace, const cl::Buffer& rgba, const cl::Buffer& distance,
+            const cl::Buffer& view);
+  static ResolveParams params(const FrameShape& frame, const CameraConstants& camera, const TraceSettings& s,
+                              int views);
   // Adds the rays of one batch (params.first_sample, params.batch_size) over `tiles` listed tiles.
   void accumulate(cl::CommandQueue& q, const ResolveParams& params, int tiles, StageEvents& events);
   void finalize(cl::CommandQueue& q, const ResolveParams& params, int tiles, StageEvents& events);
 
  private:
   FrameShape frame_;
+  int views_ = 0;
   cl::Kernel accumulate_, finalize_;
-  cl::Buffer radiance_, weight_;  // running sums across batches
+  cl::Buffer radiance_, weight_, sources_;  // running sums across batches
 };
 
 // The range of `tiles` listed tiles as 2D SSRCL_TILE work-groups side by side.

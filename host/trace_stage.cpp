@@ -6,13 +6,13 @@
 #include "settings_validation.hpp"
 
 namespace ssrcl::detail {
-namespace {
-
-const char* tracerDefine(Tracer t) {
+std::string tracerDefine(Tracer t) {
   return t == Tracer::Linear ? "SSRCL_TRACER=SSRCL_TRACER_LINEAR"
          : t == Tracer::DDA  ? "SSRCL_TRACER=SSRCL_TRACER_DDA"
                              : "SSRCL_TRACER=SSRCL_TRACER_HIZ";
 }
+
+namespace {
 
 // Ray records of all samples when they fit in this budget, else fewer samples per batch (the
 // resolve accumulates across batches; prefiltered hits are weighted by their own batch's hits,
@@ -21,13 +21,15 @@ constexpr size_t kRayRecordBudget = size_t(512) << 20;
 
 }  // namespace
 
-void TraceStage::configure(Device::Impl& device, const TraceSettings& s, bool hasBase) {
+void TraceStage::configure(Device::Impl& device, const TraceSettings& s, bool hasBase, bool views) {
   hasBase_ = hasBase;
   counting_ = s.countWork;
+  views_ = views;
+  std::vector<std::string> defines = {tracerDefine(s.tracer), roughnessMappingDefine(s.roughnessMapping),
+                                      std::string("SSRCL_COUNT_WORK=") + (s.countWork ? "1" : "0")};
+  if (views) defines.push_back("SSRCL_VIEWS=1");  // only then: programs without views stay as they were
   const cl::Program& program =
-      device.program({"ssrcl_shared.h", "common.cl", "sequence.cl", "ggx.cl", "color_lookup.cl", "trace.cl"},
-                     {tracerDefine(s.tracer), roughnessMappingDefine(s.roughnessMapping),
-                      std::string("SSRCL_COUNT_WORK=") + (s.countWork ? "1" : "0")});
+      device.program({"ssrcl_shared.h", "common.cl", "sequence.cl", "ggx.cl", "color_lookup.cl", "trace.cl"}, defines);
   kernel_ = cl::Kernel(program, "trace_rays");
   batch_ = s.samplesPerPixel;
 }
@@ -39,6 +41,7 @@ void TraceStage::plan(DeviceBuffers& buffers, const FrameShape& frame) {
   batch_ = std::min(batch_, static_cast<int>(std::max<size_t>(1, kRayRecordBudget / (2 * perSample))));
   buffers.add(rayHit, perSample * batch_);
   buffers.add(rayRadiance, perSample * batch_);
+  buffers.add(rayState, views_ ? pixels * batch_ : 0);
   buffers.add(baseIn_, hasBase_ ? pixels * 3 * sizeof(float) : 0, CL_MEM_READ_ONLY);
   buffers.add(specularIn_, hasBase_ ? pixels * 3 * sizeof(float) : 0, CL_MEM_READ_ONLY);
   buffers.add(workCounters_, counting_ ? (SSRCL_FETCH_SLOTS + SSRCL_HISTOGRAM_BINS) * sizeof(cl_int) : 0);
@@ -46,7 +49,8 @@ void TraceStage::plan(DeviceBuffers& buffers, const FrameShape& frame) {
 
 void TraceStage::bind(const SetupStage& setup, const HzbStage& hzb, const ColorPyramidStage& colors) {
   bindArgs(kernel_, 1, hzb.hzb, hzb.levels, setup.positions, setup.normals, setup.rayList, setup.pixelRays,
-           setup.thickness, workCounters_, colors.pyramid, baseIn_, specularIn_, rayHit, rayRadiance);
+           setup.thickness, workCounters_, colors.pyramid, baseIn_, specularIn_, rayHit, rayRadiance,
+           rayState);
 }
 
 TraceParams TraceStage::params(const FrameShape& frame, const CameraConstants& camera, const TraceSettings& s,

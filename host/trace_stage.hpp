@@ -8,9 +8,13 @@
 
 namespace ssrcl::detail {
 
+// The SSRCL_TRACER define of programs that trace.
+std::string tracerDefine(Tracer t);
+
 class TraceStage {
  public:
-  void configure(Device::Impl& device, const TraceSettings& s, bool hasBase);
+  // With views, the trace also writes each ray's state (rayState) for the view stage.
+  void configure(Device::Impl& device, const TraceSettings& s, bool hasBase, bool views);
   void plan(DeviceBuffers& buffers, const FrameShape& frame);
   void bind(const SetupStage& setup, const HzbStage& hzb, const ColorPyramidStage& colors);
   // Uploads base and specular (packed floats, when set) and clears the counters (counting mode).
@@ -24,9 +28,10 @@ class TraceStage {
 
   int batchSize() const { return batch_; }  // samples per pixel in the ray records
   cl::Buffer rayHit, rayRadiance;            // per (pixel, batch slot); see kernels/trace.cl
+  cl::Buffer rayState;                       // per (pixel, batch slot), with views (SSRCL_RAY_*)
 
  private:
-  bool hasBase_ = false, counting_ = false;
+  bool hasBase_ = false, counting_ = false, views_ = false;
   int batch_ = 1;
   FrameShape frame_;
   cl::Kernel kernel_;

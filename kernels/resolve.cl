@@ -1,5 +1,12 @@
 // Resolve: turns ray records into the reflection pass, one batch of samples at a time.
 //
+// With SSRCL_VIEWS, acc_sources holds per pixel the found weight (sum w c) of each ray source
+// (the main frame, then each auxiliary view), and out_view the source with the most (0 the main
+// frame, k the k-th view, -1 none) and the share of the found weight that came from views.
+#ifndef SSRCL_VIEWS
+#define SSRCL_VIEWS 0
+#endif
+
 // Glossy pixels use the ratio estimator of Stachowiak ("Stochastic Screen-Space Reflections",
 // 2015): every ray of a similar neighbour is reused, weighted by this pixel's BRDF * cosine over
 // the pdf the ray was drawn with, and
@@ -28,7 +35,8 @@ __kernel void resolve_accumulate(ResolveParams params, __global const int* tile_
                                  __global const float4* normals, __global const int* pixel_rays,
                                  __global const float4* ray_hit,
                                  __global const float4* ray_radiance, __global float4* acc_radiance,
-                                 __global float2* acc_weight) {
+                                 __global float2* acc_weight, __global const uchar* ray_state,
+                                 __global float* acc_sources) {
   const int2 size = (int2)(params.width, params.height);
   const float16 inv_proj = vload16(0, params.inv_proj);
   const int batch_size = params.batch_size, first_sample = params.first_sample, reuse_radius = params.reuse_radius;
@@ -40,6 +48,11 @@ __kernel void resolve_accumulate(ResolveParams params, __global const int* tile_
   bool first = first_sample == 0;
   float4 radiance = first ? (float4)(0.0f) : acc_radiance[i];
   float2 weight = first ? (float2)(0.0f) : acc_weight[i];
+#if SSRCL_VIEWS
+  __global float* sources = acc_sources + (size_t)i * (params.view_count + 1);
+  if (first)
+    for (int k = 0; k <= params.view_count; ++k) sources[k] = 0.0f;
+#endif
   if (pixel_rays[i] == 0) {  // sky, or too rough
     acc_radiance[i] = radiance;
     acc_weight[i] = weight;
@@ -56,6 +69,9 @@ __kernel void resolve_accumulate(ResolveParams params, __global const int* tile_
       bool hit = h.w >= 0.0f;
       radiance = hit ? (float4)(ray_radiance[(size_t)i * batch_size].xyz * h.w, h.w) : (float4)(0.0f);
       weight = (float2)(1.0f, hit ? h.w * length(h.xyz - p) : 0.0f);
+#if SSRCL_VIEWS
+      if (hit) sources[ray_state[(size_t)i * batch_size] >> SSRCL_RAY_SOURCE_SHIFT] += h.w;
+#endif
     }
   } else {
     float3 tx, ty;
@@ -84,6 +100,9 @@ __kernel void resolve_accumulate(ResolveParams params, __global const int* tile_
           if (hit) {
             radiance += (float4)(rad.xyz * (w * h.w), w * h.w);
             weight.y += w * h.w * length(h.xyz - p);
+#if SSRCL_VIEWS
+            sources[ray_state[r] >> SSRCL_RAY_SOURCE_SHIFT] += w * h.w;
+#endif
           }
         }
       }
@@ -95,7 +114,8 @@ __kernel void resolve_accumulate(ResolveParams params, __global const int* tile_
 
 __kernel void resolve_finalize(ResolveParams params, __global const int* tile_list,
                                __global const float4* acc_radiance, __global const float2* acc_weight,
-                               __global float4* out_rgba, __global float* out_distance) {
+                               __global float4* out_rgba, __global float* out_distance,
+                               __global const float* acc_sources, __global float2* out_view) {
   const int2 size = (int2)(params.width, params.height);
   int2 xy = tile_pixel(tile_list, params.tiles_x);
   int x = xy.x, y = xy.y;
@@ -109,4 +129,18 @@ __kernel void resolve_finalize(ResolveParams params, __global const int* tile_li
   out_rgba[i] = all(isfinite(rgba)) ? rgba : (float4)(0.0f);
   float d = any ? w.y / r.w : 0.0f;
   out_distance[i] = isfinite(d) ? d : 0.0f;
+#if SSRCL_VIEWS
+  __global const float* sources = acc_sources + (size_t)i * (params.view_count + 1);
+  int best = -1;
+  float best_weight = 0.0f, total = 0.0f;
+  for (int k = 0; k <= params.view_count; ++k) {
+    total += sources[k];
+    if (sources[k] > best_weight) {
+      best = k;
+      best_weight = sources[k];
+    }
+  }
+  float share = total > 0.0f ? (total - sources[0]) / total : 0.0f;
+  out_view[i] = (float2)((float)best, isfinite(share) ? clamp(share, 0.0f, 1.0f) : 0.0f);
+#endif
 }

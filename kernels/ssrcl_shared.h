@@ -100,6 +100,41 @@ typedef struct {
   ssrcl_int has_base;      // base and specular images are bound
 } TraceParams;
 
+// Auxiliary views (kernels/view_trace.cl): rays the main frame leaves unresolved continue in other
+// G-buffers of the scene. A ray tries at most SSRCL_VIEWS_PER_RAY views, best placed first.
+#define SSRCL_MAX_VIEWS 16
+#define SSRCL_VIEWS_PER_RAY 3
+// Ray state per record, written by the trace with SSRCL_VIEWS: SSRCL_RAY_BEHIND while the ray's
+// screen trace passed behind a surface before its hit or miss (the frame hid what it may have
+// hit), SSRCL_RAY_THICK while its hit is one found behind a surface within its thickness (the
+// surface may be in front of the real hit); the bits above hold the ray's source, 0 for the main
+// frame, 1 + k for view k.
+#define SSRCL_RAY_BEHIND 1
+#define SSRCL_RAY_THICK 2
+#define SSRCL_RAY_SOURCE_SHIFT 2
+
+// One view's camera relative to the main one.
+typedef struct {
+  float from_main[16];  // main view space -> this view's space
+  float to_main[16];    // its inverse
+  float proj[16];
+  ssrcl_int width, height;
+  float near_plane, far_plane;
+} ViewCamera;
+
+typedef struct {
+  float inv_proj[16];      // the main camera's
+  ssrcl_int width, height; // the main frame's
+  ssrcl_int listed, batch_size, first_sample;  // as the trace's batch
+  ssrcl_int view;          // the view this pass traces in
+  ssrcl_int rank;          // rays for which it is their rank-th best view
+  ssrcl_int view_count;
+  ssrcl_int level_count;   // the view's HZB and colour levels
+  ssrcl_int max_iterations;
+  float mirror_roughness, cone_scale, linear_step, edge_fade;
+  float radiance_limit;    // a view hit's mean rgb is scaled down to at most this (ViewStage::limitRadiance)
+} ViewTraceParams;
+
 // kernels/resolve.cl (roughness mapping is a program define)
 typedef struct {
   float inv_proj[16];
@@ -108,6 +143,7 @@ typedef struct {
   ssrcl_int batch_size, first_sample;
   float mirror_roughness;
   ssrcl_int reuse_radius;
+  ssrcl_int view_count;  // auxiliary views (programs built with SSRCL_VIEWS)
 } ResolveParams;
 
 // kernels/filter.cl

@@ -6,6 +6,10 @@
 // Q = P / w and k = 1 / w are affine in screen space for any projective camera (perspective or
 // orthographic), so the ray's planar depth -Q.z / k at any t is exact, not interpolated.
 
+#ifndef SSRCL_VIEWS
+#define SSRCL_VIEWS 0  // 1: auxiliary views follow (kernels/view_trace.cl); ray states are written
+#endif
+
 typedef struct {
   float2 s0, ds;
   float4 q0, dq;  // xyz = Q, w = k
@@ -68,6 +72,10 @@ typedef struct {
   int max_iterations;
   int iterations;  // work done by this ray, for the counting mode
   int fetches;     // depth-buffer texels read (HZB texels, or a pixel's point and normal)
+  // SSRCL_VIEWS only: the ray was seen in front of a surface; it then passed behind one it did not
+  // hit (a ray that starts hidden, as from a surface a view sees from behind, is not held to it
+  // until it comes into view); its hit was found within a surface's thickness.
+  int seen, behind, thick;
 } TraceScene;
 
 // The ray's signed distance to a plane through p with normal n, times k = 1 / w (> 0 in front of
@@ -89,13 +97,27 @@ inline float hit_pixel(TraceScene* sc, const ScreenRay* ray, float3 dir, int2 ce
   int idx = cell.y * sc->size.x + cell.x;
   float4 pc = sc->positions[idx];
   *in_front = true;
-  if (pc.w >= SSRCL_NO_SURFACE) return -1.0f;
+  if (pc.w >= SSRCL_NO_SURFACE) {
+#if SSRCL_VIEWS
+    sc->seen = 1;  // over the sky
+#endif
+    return -1.0f;
+  }
   float3 n = sc->normals[idx].xyz;
   float g_in = plane_side(ray, t_in, pc.xyz, n), g_out = plane_side(ray, t_out, pc.xyz, n);
   *in_front = g_out > 0.0f;
   if (!(dot(n, dir) < 0.0f)) return -1.0f;
   if (g_in > 0.0f && g_out <= 0.0f) return t_in + (t_out - t_in) * (g_in / (g_in - g_out));
-  if (g_in <= 0.0f && -g_in / ray_q(ray, t_in).w <= sc->thickness[idx]) return t_in;
+  if (g_in <= 0.0f && -g_in / ray_q(ray, t_in).w <= sc->thickness[idx]) {
+#if SSRCL_VIEWS
+    sc->thick = 1;
+#endif
+    return t_in;
+  }
+#if SSRCL_VIEWS
+  if (*in_front) sc->seen = 1;
+  else if (sc->seen) sc->behind = 1;
+#endif
   return -1.0f;
 }
 
@@ -183,6 +205,20 @@ inline float trace_dda(TraceScene* sc, const ScreenRay* ray, float3 dir, int2* h
   return -1.0f;
 }
 
+// Traces the view-space segment p0 -> p1 (both in front of the camera) with direction dir.
+inline float trace_segment(TraceScene* sc, float16 proj, float linear_step, float3 p0, float3 p1, float3 dir,
+                           ScreenRay* ray, int2* cell) {
+  if (!make_screen_ray(proj, sc->size, p0, p1, ray)) return -1.0f;
+  if (!(fmax(fabs(ray->ds.x), fabs(ray->ds.y)) > 0.0f)) return -1.0f;
+#if SSRCL_TRACER == SSRCL_TRACER_LINEAR
+  return trace_linear(sc, ray, dir, linear_step, cell);
+#elif SSRCL_TRACER == SSRCL_TRACER_DDA
+  return trace_dda(sc, ray, dir, cell);
+#else
+  return trace_hiz(sc, ray, dir, cell);
+#endif
+}
+
 // Traces from view-space point p along unit direction dir: the segment ends at the near plane for
 // rays toward the camera, at the far plane otherwise, capped so an infinite far plane still gives a
 // finite end. Returns the hit's t on *ray (negative on a miss) and the pixel hit in *cell.
@@ -192,15 +228,7 @@ inline float trace_from(TraceScene* sc, float16 proj, float near_plane, float fa
             : dir.z < 0.0f ? (-far_plane - p.z) / dir.z : length_max;
   len = fmin(len, length_max);
   if (!(len > 0.0f)) return -1.0f;
-  if (!make_screen_ray(proj, sc->size, p, p + dir * len, ray)) return -1.0f;
-  if (!(fmax(fabs(ray->ds.x), fabs(ray->ds.y)) > 0.0f)) return -1.0f;
-#if SSRCL_TRACER == SSRCL_TRACER_LINEAR
-  return trace_linear(sc, ray, dir, linear_step, cell);
-#elif SSRCL_TRACER == SSRCL_TRACER_DDA
-  return trace_dda(sc, ray, dir, cell);
-#else
-  return trace_hiz(sc, ray, dir, cell);
-#endif
+  return trace_segment(sc, proj, linear_step, p, p + dir * len, dir, ray, cell);
 }
 
 // The direction a surface with normal n and GGX alpha reflects toward o (unit, away from it): the
@@ -219,6 +247,25 @@ inline float3 sample_reflection(float3 o, float3 n, bool mirror, float alpha, fl
   return normalize(ll.x * tx + ll.y * ty + ll.z * n);
 }
 
+// The colour pyramid's level whose texels match the footprint of this ray's share of the lobe (a
+// cone of tangent alpha * cone_scale) at the hit distance.
+inline float hit_mip_level(const TraceScene* sc, float16 proj, const ScreenRay* ray, float t, float distance,
+                           float alpha, float cone_scale) {
+  float px_per_unit = 0.5f * (float)sc->size.y * fabs(proj.s5) * ray_q(ray, t).w;
+  return log2(fmax(2.0f * distance * alpha * cone_scale * px_per_unit, 1.0f));
+}
+
+// The colour at a ray's hit on pixel `cell` at `distance` from its origin, looked up at once (the
+// views' hits: their pyramids keep coverage weights, not hit counts). Prefiltered (cone_scale > 0,
+// alpha > 0: not a mirror ray) but on specular pixels, which the pyramid leaves out (setup.cl).
+inline float4 hit_color(const TraceScene* sc, __global const float4* color_pyramid, float16 proj,
+                        const ScreenRay* ray, float t, int2 cell, float distance, float alpha, float cone_scale) {
+  int q = cell.y * sc->size.x + cell.x;
+  if (!(cone_scale > 0.0f && alpha > 0.0f) || specular_pixel(sc->normals[q].w)) return color_pyramid[q];
+  return pyramid_sample(color_pyramid, sc->levels, sc->level_count, ray_screen(ray, t),
+                        hit_mip_level(sc, proj, ray, t, distance, alpha, cone_scale));
+}
+
 // Counting mode (SSRCL_COUNT_WORK): texel reads and the iteration histogram (ssrcl_shared.h).
 inline void count_work(__global int* counters, int gid, const TraceScene* sc) {
   atomic_add(&counters[gid % SSRCL_FETCH_SLOTS], sc->fetches);
@@ -234,7 +281,7 @@ __kernel void trace_rays(TraceParams params, __global const float* hzb, __global
                          __global const int* ray_list, __global const int* pixel_rays,
                          __global const float* thickness, __global int* work_counters,
                          __global const float4* color_pyramid, __global const float* base, __global const float* specular, __global float4* ray_hit,
-                         __global float4* ray_radiance) {
+                         __global float4* ray_radiance, __global uchar* ray_state) {
   const int2 size = (int2)(params.width, params.height);
   const float16 proj = vload16(0, params.proj), inv_proj = vload16(0, params.inv_proj);
   const float near_plane = params.near_plane, far_plane = params.far_plane, linear_step = params.linear_step;
@@ -250,6 +297,9 @@ __kernel void trace_rays(TraceParams params, __global const float* hzb, __global
   size_t record = (size_t)i * batch_size + slot;
   ray_hit[record] = (float4)(0.0f, 0.0f, 0.0f, -1.0f);
   ray_radiance[record] = (float4)(0.0f);
+#if SSRCL_VIEWS
+  ray_state[record] = 0;
+#endif
 
   float4 nr = normals[i];
   float3 n = nr.xyz;
@@ -271,6 +321,10 @@ __kernel void trace_rays(TraceParams params, __global const float* hzb, __global
   ScreenRay ray;
   int2 cell;  // the pixel whose surface the ray hit; its colour is the hit's colour
   float t = trace_from(&sc, proj, near_plane, far_plane, linear_step, p, dir, &ray, &cell);
+#if SSRCL_VIEWS
+  // Only the primary ray's passage counts: the glossy hit's second ray below only shades the hit.
+  ray_state[record] = (sc.behind ? SSRCL_RAY_BEHIND : 0) | (t >= 0.0f && sc.thick ? SSRCL_RAY_THICK : 0);
+#endif
   if (t < 0.0f) {
     if (SSRCL_COUNT_WORK) count_work(work_counters, gid, &sc);
     return;
@@ -278,17 +332,14 @@ __kernel void trace_rays(TraceParams params, __global const float* hzb, __global
 
   float2 s = ray_screen(&ray, t);
   float3 hit = ray_point(&ray, t);
-  float4 radiance;
   cell = clamp(cell, (int2)(0, 0), size - 1);
+  float4 radiance;
   bool prefiltered = params.cone_scale > 0.0f && !mirror && !specular_pixel(normals[cell.y * size.x + cell.x].w);
   if (prefiltered) {
     // Prefiltered hit, looked up once the batch's hits are counted (hit_prefilter.cl): recorded as
-    // the screen position and the mip whose texels match the footprint of this ray's share of the
-    // lobe (a cone of tangent alpha * cone_scale) at the hit distance. A hit on a specular pixel
+    // the screen position and the mip of its footprint (hit_mip_level). A hit on a specular pixel
     // (which the pyramid leaves out, setup.cl) reads its own colour.
-    float px_per_unit = 0.5f * (float)size.y * fabs(proj.s5) * ray_q(&ray, t).w;
-    float footprint = 2.0f * length(hit - p) * alpha * params.cone_scale * px_per_unit;
-    radiance = (float4)(s, -1.0f - log2(fmax(footprint, 1.0f)), 0.0f);
+    radiance = (float4)(s, -1.0f - hit_mip_level(&sc, proj, &ray, t, length(hit - p), alpha, params.cone_scale), 0.0f);
   } else {
     radiance = color_pyramid[cell.y * size.x + cell.x];
   }

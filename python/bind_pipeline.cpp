@@ -4,6 +4,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "bindings.hpp"
 #include "gbuffer_input.hpp"
@@ -41,6 +42,23 @@ class PythonPipeline {
     environment_ = std::move(environment);
     committed_ = false;
   }
+
+  // `gbuffer` is kept alive here: the C++ pipeline reads it at execute().
+  void setView(int index, std::shared_ptr<const GBuffer> gbuffer, const Camera& camera, const std::string& label) {
+    pipeline_->setView(index, *gbuffer, camera, label);  // validates the index first
+    const View view{std::move(gbuffer), camera, label};
+    if (index == static_cast<int>(views_.size())) views_.push_back(view);
+    else views_[index] = view;
+    committed_ = false;
+  }
+
+  void clearViews() {
+    pipeline_->clearViews();
+    views_.clear();
+    committed_ = false;
+  }
+
+  int viewCount() const { return static_cast<int>(views_.size()); }
 
   TraceSettings& settings() { return settings_; }
 
@@ -82,6 +100,8 @@ class PythonPipeline {
     for (const auto& [name, input] : inputs_) fresh->setImage(name, input.view);
     if (camera_) fresh->setCamera(*camera_);
     if (environment_) fresh->setEnvironment(*environment_);
+    for (size_t k = 0; k < views_.size(); ++k)
+      fresh->setView(static_cast<int>(k), *views_[k].gbuffer, views_[k].camera, views_[k].label);
     pipeline_ = std::move(fresh);
     return true;
   }
@@ -95,6 +115,12 @@ class PythonPipeline {
   std::map<std::string, Input> inputs_, committedInputs_;  // the latter alive until the next commit
   std::optional<Camera> camera_;
   std::shared_ptr<const EnvironmentMap> environment_;
+  struct View {
+    std::shared_ptr<const GBuffer> gbuffer;
+    Camera camera;
+    std::string label;
+  };
+  std::vector<View> views_;
   TraceSettings settings_;
   bool committed_ = false;
 };
@@ -104,7 +130,7 @@ class PythonPipeline {
 void bindPipeline(py::module_& m) {
   py::class_<PythonPipeline>(m, "Pipeline",
                              "The SSR pipeline (include/ssrcl/pipeline.hpp): setImage/setFrame, setCamera, settings, "
-                             "commit(), execute(), output('reflection' | 'distance').")
+                             "setView/clearViews, commit(), execute(), output('reflection' | 'distance' | 'view').")
       .def(py::init<const Device&>(), py::arg("device"))
       .def(
           "setImage",
@@ -133,6 +159,32 @@ void bindPipeline(py::module_& m) {
             p.setCamera(frame->camera);
           },
           py::arg("frame"), "Every pass of a loadFrame() result and its camera, as `ssrcl trace` sets them.")
+      .def(
+          "setView",
+          [](PythonPipeline& p, int index, std::shared_ptr<cli::Frame> frame, const std::string& label) {
+            p.setView(index, std::shared_ptr<const GBuffer>(frame, &frame->gbuffer), frame->camera, label);
+          },
+          py::arg("index"), py::arg("frame"), py::arg("label") = "",
+          "Auxiliary view `index` (0, 1, ...; viewCount() appends) from a loadFrame() result and its camera: rays "
+          "the frame leaves unresolved continue in it (Pipeline::setView in include/ssrcl/pipeline.hpp). `label` "
+          "names it in messages.")
+      .def(
+          "setView",
+          [](PythonPipeline& p, int index, const Camera& camera, const FloatArray& color, const FloatArray& depth,
+             const FloatArray& normal, const std::optional<FloatArray>& roughness, const std::string& label) {
+            auto g = std::make_shared<GBuffer>();
+            g->color = imageFromArray(color, "view color");
+            g->depth = imageFromArray(depth, "view depth");
+            g->normal = imageFromArray(normal, "view normal");
+            if (roughness) g->roughness = imageFromArray(*roughness, "view roughness");
+            p.setView(index, g, camera, label);
+          },
+          py::arg("index"), py::arg("camera"), py::arg("color"), py::arg("depth"), py::arg("normal"),
+          py::arg("roughness") = py::none(), py::arg("label") = "",
+          "Auxiliary view `index` from arrays as setImage takes them (colour, planar depth, world normals; no "
+          "roughness: no glossy pixels), copied, with its own camera and size.")
+      .def("clearViews", &PythonPipeline::clearViews)
+      .def("viewCount", &PythonPipeline::viewCount)
       .def("setCamera", &PythonPipeline::setCamera, py::arg("camera"))
       .def("setEnvironment", &PythonPipeline::setEnvironment, py::arg("environment"),
            "Environment fill (an EnvironmentMap, or None to turn it off): the lobe share not found on screen "
@@ -145,8 +197,10 @@ void bindPipeline(py::module_& m) {
            "Validates the inputs and settings, compiles the kernels (once per device) and allocates.")
       .def("execute", &PythonPipeline::execute, py::call_guard<py::gil_scoped_release>())
       .def("output", &PythonPipeline::output, py::arg("name"),
-           "'reflection' (HxWx4: premultiplied RGB, A = confidence) or 'distance' (HxWx1), as read-only arrays "
-           "over the pipeline's buffers (no copy); later commits and executes leave them unchanged.")
+           "'reflection' (HxWx4: premultiplied RGB, A = confidence), 'distance' (HxWx1) or, with views, 'view' "
+           "(HxWx2: the source of most of the found weight, 0 the frame, k the view of index k-1, -1 none; the "
+           "share of A found in views), as read-only arrays over the pipeline's buffers (no copy); later commits "
+           "and executes leave them unchanged.")
       .def("stageTimes",
            [](const PythonPipeline& p) { return p.pipeline().stageTimes().ms; },
            "Device milliseconds per stage of the last execute().")

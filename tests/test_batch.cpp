@@ -8,6 +8,7 @@
 #include <sys/stat.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <iostream>
@@ -109,6 +110,36 @@ TEST_F(Batch, MirrorFramesMatchTheirOwnExactReflections) {
   const auto wrongCamera = ssrcl::test::matchExactReflections(output(1003), scene, ssrcl::test::sequenceCamera(s, 0));
   std::cout << "frame 1003 against frame 1001's truth: " << wrongCamera.visibleRate() << "\n";
   EXPECT_LT(wrongCamera.visibleRate(), 0.8);
+}
+
+// A static view shared by every frame (--view, uploaded once) gives each frame what `ssrcl trace`
+// gives it with the same view, bit for bit, and the view supplies hits the frames miss.
+TEST_F(Batch, AStaticViewGivesWhatTraceGives) {
+  ssrcl::test::AnalyticSequence wide;
+  wide.directory = dir.file("views");
+  wide.prefix = "wide";
+  wide.frameCount = 1;
+  wide.width = 128;
+  wide.height = 72;
+  wide.fovYDegrees = 90.0;
+  wide.roughness = 0.3;
+  ssrcl::test::writeAnalyticSequence(wide);
+  const std::string view = dir.file("views/wide.1001.exr");
+  auto r = batch("--io-threads 2 --view " + shellQuote(view));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  for (int f = 1001; f < 1001 + kFrames; ++f) {
+    const std::string traced = dir.file("trace." + std::to_string(f) + ".exr");
+    auto t = runCommand(cli("trace " + shellQuote(input(f)) + " -o " + shellQuote(traced) + " --view " + shellQuote(view)));
+    ASSERT_EQ(t.exitCode, 0) << t.output;
+    EXPECT_EQ(ssrcl::test::readBytes(output(f)), ssrcl::test::readBytes(traced)) << "frame " << f;
+    auto exr = ssrcl::test::readExr(output(f));
+    ASSERT_TRUE(exr.channels.count("view")) << "frame " << f;
+    const auto& source = exr.channels["view"].values;
+    EXPECT_GT(std::count(source.begin(), source.end(), 1.0f), 0) << "frame " << f << ": the view supplied nothing";
+  }
+  r = batch("--overwrite --view " + shellQuote(dir.file("views/none.exr")));
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+  EXPECT_NE(r.output.find("none.exr"), std::string::npos) << r.output;
 }
 
 TEST_F(Batch, SkipsExistingOutputsUnlessOverwrite) {

@@ -167,6 +167,37 @@ TEST_F(Cli, NotAnExrFile) {
   expectFailure("trace " + shellQuote(shot) + " -o " + shellQuote(out), 2, shot);
 }
 
+// Auxiliary views (--view) are read like the input, each camera from its sidecar or the
+// --view-camera in its place; a bad one is named. The pass says where its hits came from.
+TEST_F(Cli, ViewsAreReadLikeTheInputAndNamedWhenBad) {
+  const std::string view = dir.file("side.exr"), sidecar = dir.file("side.camera.json");
+  const std::string traced = "trace " + shellQuote(shot) + " -o " + shellQuote(out) + " --view " + shellQuote(view);
+  writeShot(view);
+  writeCamera(sidecar);
+  auto r = runCommand(cli(traced));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  auto exr = ssrcl::test::readExr(out);
+  ASSERT_TRUE(exr.channels.count("view") && exr.channels.count("view_share"));
+  // The floor reflects the sky in the frame and in the view: no source found anything.
+  for (int i = 0; i < kW * kH; ++i) {
+    EXPECT_EQ(exr.channels["view"].values[i], -1.0f);
+    EXPECT_EQ(exr.channels["view_share"].values[i], 0.0f);
+  }
+  std::filesystem::remove(out);
+
+  writeShot(view, {"ViewLayer.Normal.X"});
+  expectFailure(traced, 2, "view " + view);
+  writeShot(view);
+  std::filesystem::rename(sidecar, dir.file("elsewhere.json"));
+  expectFailure(traced, 2, "side.camera.json");
+  expectFailure(traced + " --view-camera " + shellQuote(dir.file("nothing.json")), 2, "nothing.json");
+  r = runCommand(cli(traced + " --view-camera " + shellQuote(dir.file("elsewhere.json"))));
+  EXPECT_EQ(r.exitCode, 0) << r.output;
+  std::filesystem::remove(out);
+  expectFailure("trace " + shellQuote(shot) + " -o " + shellQuote(out) + " --view-camera " + shellQuote(sidecar), 2,
+                "--view-camera");
+}
+
 TEST_F(Cli, BadOptionsAreUsageErrors) {
   expectFailure("trace " + shellQuote(shot) + " -o " + shellQuote(out) + " --max-roughness 7", 2, "max-roughness");
   expectFailure("trace " + shellQuote(shot) + " -o " + shellQuote(out) + " --no-such-option", 2, "no-such-option");

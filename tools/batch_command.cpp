@@ -26,6 +26,7 @@ struct BatchOptions {
   BatchRequest request;
   std::string device, shard = "0/1", report;
   GBufferInputOptions in;
+  std::vector<std::string> views, viewCameras;  // static views, shared by every frame
   SettingsOptions settings;
   OutputOptions out;
   // Readers and as many writers; a quarter of the cores leaves the rest to a CPU device.
@@ -58,7 +59,7 @@ int runBatch(const BatchOptions& o) {
       toRun.push_back(&jobs[i]);
   }
   OutputRecord record{o.settings.quality, o.in.applyTo(o.settings.resolve()), "", o.in.form.form,
-                      o.settings.environment};
+                      o.settings.environment, o.views};
   for (size_t i = 0; i < jobs.size() && !o.dryRun; ++i)
     if (outcomes[i].status == FrameStatus::Skipped)
       if (const std::string problem = resumeMismatch(jobs[i].output, jobs[i].input, o.out, record); !problem.empty())
@@ -89,8 +90,10 @@ int runBatch(const BatchOptions& o) {
     deviceName = device.info().name;
     record.device = deviceName;
     const EnvironmentMap environment = o.settings.loadEnvironment();  // loaded and prefiltered once
+    const Views views = loadViews(o.in, o.views, o.viewCameras);       // read and uploaded once
     BatchRunner runner(device, o.in, record, o.out, o.failFast, o.ioThreads);
     runner.setEnvironment(environment);
+    runner.setViews(views);
     ProgressLine progress(toRun.size(), !o.quiet);
     size_t finished = 0, failed = 0;
     run = runner.run(
@@ -132,6 +135,9 @@ Action addBatchCommand(CLI::App& app) {
                   "One camera JSON for all frames, or a pattern/{stem} template (default: <stem>.camera.json beside "
                   "each frame, else the frame's EXR header camera)");
   cmd->add_option("--device", o->device, "OpenCL device: index from `ssrcl devices`, cpu, gpu or default");
+  addViewOptions(*cmd, o->views, o->viewCameras,
+                 "Auxiliary view shared by every frame: a G-buffer EXR of the same (static) scene from another "
+                 "camera (repeatable), read and uploaded once; as `ssrcl trace --view`");
   cmd->add_option("--shard", o->shard,
                   "K/N: process only share K (0-based) of N, e.g. $SLURM_ARRAY_TASK_ID/$SLURM_ARRAY_TASK_COUNT")
       ->capture_default_str();

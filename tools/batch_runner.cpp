@@ -25,7 +25,7 @@ struct FrameInFlight {
   size_t index = 0;
   FrameOutcome outcome;
   Frame frame;
-  Image reflection, distance;
+  Image reflection, distance, view;  // view: with auxiliary views only
   bool deviceUnusable = false;  // no later frame can succeed either: stop rather than fail each
 };
 
@@ -122,8 +122,9 @@ BatchRun BatchRunner::run(const std::vector<FrameJob>& jobs, std::vector<FrameOu
           if (!parent.empty()) std::filesystem::create_directories(parent);
           const FrameJob& job = jobs[f->index];
           toOutputForm(input_.form, f->reflection, f->frame.gbuffer, f->frame.camera, input_.roughness);
-          writeReflectionExr(job.output, f->reflection, f->distance,
-                             writerOptions(output_, record_, job.input, input_.sourceFor(job.input), f->frame));
+          ReflectionExrOptions written = writerOptions(output_, record_, job.input, input_.sourceFor(job.input), f->frame);
+          if (!f->view.empty()) written.view = &f->view;
+          writeReflectionExr(job.output, f->reflection, f->distance, written);
         });
         finish(*f);
       }
@@ -143,6 +144,7 @@ BatchRun BatchRunner::run(const std::vector<FrameJob>& jobs, std::vector<FrameOu
       for (const auto& [stage, ms] : pipeline_.stageTimes().ms) f->outcome.deviceMs += ms;
       f->reflection = pipeline_.output("reflection");  // copies: the pipeline reuses its outputs
       f->distance = pipeline_.output("distance");
+      f->view = pipeline_.output("view");  // empty without views
       f->frame.gbuffer = GBuffer{};
     });
     if (!computedOk)

@@ -43,6 +43,8 @@ class BatchRunner {
 
   // Every frame's misses take this environment (see Pipeline::setEnvironment); it must outlive run().
   void setEnvironment(const EnvironmentMap& environment) { pipeline_.setEnvironment(environment); }
+  // Auxiliary views of every frame (see Pipeline::setView), uploaded once; they must outlive run().
+  void setViews(const Views& views) { cli::setViews(pipeline_, views); }
 
   // Processes, in order, the jobs whose outcome is NotRun and records their outcomes. Starts no
   // new frame once stopRequested() is true; the frame on the device is finished and written.

@@ -136,4 +136,43 @@ void setFrame(Pipeline& pipeline, const Frame& frame) {
   pipeline.setCamera(frame.camera);
 }
 
+Views loadViews(const GBufferInputOptions& o, const std::vector<std::string>& files,
+                const std::vector<std::string>& cameras) {
+  if (cameras.size() > files.size())
+    throw Error(ErrorCode::InvalidArgument, "--view-camera is given " + std::to_string(cameras.size()) +
+                                                " times but --view " + std::to_string(files.size()) +
+                                                " (each --view-camera belongs to the --view in the same place)");
+  GBufferInputOptions viewOptions = o;  // a view has its own file for every pass, and no material passes
+  GBufferSource& s = viewOptions.source;
+  s.colorFile = s.depthFile = s.normalFile = s.roughnessFile = s.positionFile = s.materialFile = "";
+  s.glossyPasses = false;
+  viewOptions.form = OutputFormOptions{};
+  Views views;
+  views.files = files;
+  for (size_t k = 0; k < files.size(); ++k) {
+    const bool ownCamera = k < cameras.size() && !cameras[k].empty();
+    try {
+      views.frames.push_back(
+          loadFrame(viewOptions, files[k], ownCamera ? cameras[k] : sidecarCameraPath(files[k]), !ownCamera));
+    } catch (const Error& e) {
+      throw Error(e.code(), "view " + files[k] + ": " + e.what());
+    }
+  }
+  return views;
+}
+
+void addViewOptions(CLI::App& cmd, std::vector<std::string>& files, std::vector<std::string>& cameras,
+                    const std::string& viewHelp) {
+  cmd.add_option("--view", files, viewHelp)->allow_extra_args(false);
+  cmd.add_option("--view-camera", cameras,
+                 "Camera JSON of the --view in the same place (default: its sidecar, else its EXR header)")
+      ->allow_extra_args(false);
+}
+
+void setViews(Pipeline& pipeline, const Views& views) {
+  pipeline.clearViews();
+  for (size_t k = 0; k < views.frames.size(); ++k)
+    pipeline.setView(static_cast<int>(k), views.frames[k].gbuffer, views.frames[k].camera, views.files[k]);
+}
+
 }  // namespace ssrcl::cli

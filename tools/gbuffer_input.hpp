@@ -55,4 +55,19 @@ Frame loadFrame(const GBufferInputOptions& o, const std::string& input, const st
 // Gives the pipeline a frame's images and camera; `frame` must stay alive until execute() is done.
 void setFrame(Pipeline& pipeline, const Frame& frame);
 
+// Auxiliary views (--view): G-buffers of the same scene from other cameras, read with the input's
+// channel options (not its separate pass files or material passes). Each view's camera is
+// cameras[k] when given, else its sidecar, else its EXR header. Errors name the view's file.
+struct Views {
+  std::vector<std::string> files;
+  std::vector<Frame> frames;
+};
+Views loadViews(const GBufferInputOptions& o, const std::vector<std::string>& files,
+                const std::vector<std::string>& cameras);
+// --view (help `viewHelp`) and --view-camera.
+void addViewOptions(CLI::App& cmd, std::vector<std::string>& files, std::vector<std::string>& cameras,
+                    const std::string& viewHelp);
+// Gives the pipeline the views, labelled by their files; `views` must stay alive until execute().
+void setViews(Pipeline& pipeline, const Views& views);
+
 }  // namespace ssrcl::cli

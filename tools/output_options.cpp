@@ -54,6 +54,7 @@ ReflectionExrOptions writerOptions(const OutputOptions& o, const OutputRecord& r
     if (!value->empty()) inputs[what] = *value;
   inputs["camera"] = frame.cameraSource;
   if (!record.environment.empty()) inputs["environment"] = record.environment;
+  if (!record.views.empty()) inputs["views"] = record.views;
   w.attributes = {{"ssrcl/version", SSRCL_VERSION},
                   {"ssrcl/preset", record.preset},
                   {"ssrcl/output_form", record.outputForm},

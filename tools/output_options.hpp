@@ -29,6 +29,7 @@ struct OutputRecord {
   std::string device;
   std::string outputForm = "incident";  // --output-form
   std::string environment;              // --environment file, "" without
+  std::vector<std::string> views;       // --view files
 };
 
 // The writer's options for one frame traced from `input` (the G-buffer file: appended to with

@@ -18,6 +18,7 @@ namespace {
 struct TraceOptions {
   std::string input, output, camera, device;
   GBufferInputOptions in;
+  std::vector<std::string> views, viewCameras;
   SettingsOptions settings;
   OutputOptions out;
   bool stats = false;
@@ -40,10 +41,12 @@ int runTrace(TraceOptions& o) {
   const EnvironmentMap environment = o.settings.loadEnvironment();  // a bad file fails before any tracing
   const Frame frame = loadFrame(o.in, o.input, cameraPath, o.camera.empty());
   const Camera& camera = frame.camera;
+  const Views views = loadViews(o.in, o.views, o.viewCameras);
 
   Device device = openDevice(o.device);
   Pipeline pipeline(device);
   setFrame(pipeline, frame);
+  setViews(pipeline, views);
   pipeline.setEnvironment(environment);
   pipeline.settings() = o.in.applyTo(o.settings.resolve());
   pipeline.commit();
@@ -53,8 +56,9 @@ int runTrace(TraceOptions& o) {
   toOutputForm(o.in.form, reflection, frame.gbuffer, camera, o.in.roughness);
 
   const OutputRecord record{o.settings.quality, pipeline.settings(), device.info().name, o.in.form.form,
-                            o.settings.environment};
-  const ReflectionExrOptions written = writerOptions(o.out, record, mainFile, o.in.sourceFor(o.input), frame);
+                            o.settings.environment, o.views};
+  ReflectionExrOptions written = writerOptions(o.out, record, mainFile, o.in.sourceFor(o.input), frame);
+  if (!o.views.empty()) written.view = &pipeline.output("view");
   try {
     writeReflectionExr(o.output, reflection, pipeline.output("distance"), written);
   } catch (const Error& e) {
@@ -84,6 +88,9 @@ Action addTraceCommand(CLI::App& app) {
       ->required();
   cmd->add_option("--camera", o->camera, "Camera JSON (default: <input stem>.camera.json beside the input, else the EXR header's camera)");
   cmd->add_option("--device", o->device, "OpenCL device: index from `ssrcl devices`, cpu, gpu or default");
+  addViewOptions(*cmd, o->views, o->viewCameras,
+                 "Auxiliary view: a G-buffer EXR of the same scene from another camera (repeatable); rays that "
+                 "leave the frame or pass behind a surface continue in the views");
   addChannelOptions(*cmd, o->in);
   addPassFileOptions(*cmd, o->in);
   addSettingsOptions(*cmd, o->settings);

@@ -26,6 +26,10 @@ struct ReflectionExrOptions {
   // Written as OpenEXR's standard worldToCamera and worldToNDC (the camera of the display window).
   std::optional<Camera> camera;
   std::map<std::string, std::string> attributes;  // string attributes, e.g. "ssrcl/version"
+  // Non-null: Pipeline::output("view") of a pass traced with auxiliary views, written as channels
+  // `view` (the source of most of the found weight: 0 the frame, k its k-th view, -1 none) and
+  // `view_share` (the fraction of A found in views), with the layer prefix. Read at the call only.
+  const Image* view = nullptr;
 };
 
 // Writes the pass through a temporary in the same directory renamed over `path`, so a failure

@@ -144,6 +144,9 @@ struct StageTimes {
 //   p.execute();  // runs setup, HZB, trace, resolve
 //   const Image& out = p.output("reflection");  // RGBA premultiplied, A = confidence
 //   const Image& dist = p.output("distance");   // view-space hit distance, 0 where no hit
+//   const Image& v = p.output("view");          // with views: 2 channels, (source, views' share)
+//     source: which source supplied most of the pixel's found weight, 0 the frame itself, k its
+//     k-th view (setView index + 1), -1 none; share: the fraction of A found in views
 // Input images: color 3 or 4 channels (only RGB used), depth 1 (planar view depth, values beyond
 // the far plane or not finite mean "no surface"), normal 3 (world space), roughness 1 (not read
 // when settings().constantRoughness is set). Optional, together: base 3 (each pixel's radiance
@@ -172,6 +175,19 @@ class Pipeline {
   // All four passes of a loaded G-buffer (roughness only when it has one), same lifetime rule.
   void setGBuffer(const GBuffer& gbuffer);
   void setCamera(const Camera& camera);
+  // Auxiliary view `index` (0, 1, ...; index viewCount() adds one, at most 16): another G-buffer
+  // of the same scene (color, planar depth and world normals as above, roughness optional: none
+  // means no glossy pixels) seen by its own camera, of any size. Rays the frame leaves unresolved
+  // (misses, hits faded at its edge, hits found after passing behind a surface the frame shows)
+  // continue in up to 3 views, those that hold the ray's origin and that it heads into first,
+  // traced the same way against each view's own depth; the hit's colour is the view's. A is then
+  // the fraction of the lobe found in any view, and output("view") says where (see there).
+  // `label` names the view in messages (e.g. its file). The G-buffer must stay alive until execute(),
+  // which reads it once: later executes (other frames, through commits that keep the settings and
+  // sizes) reuse what the view uploaded; setView again after changing its pixels.
+  void setView(int index, const GBuffer& gbuffer, const Camera& camera, const std::string& label = {});
+  void clearViews();
+  int viewCount() const;
   TraceSettings& settings();
   // Environment fill: the part of each pixel's lobe not found on screen (1 - A, the edge fade
   // included) takes the environment's radiance filtered for the lobe, so "reflection" RGB is

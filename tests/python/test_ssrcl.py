@@ -50,21 +50,23 @@ class PlaneMirror:
     """A mirror floor (y = 0) facing a wall (z = -WALL) whose colour is linear in its height, seen
     by a camera at (0, 1, 0) looking down -Z. Each floor pixel's reflected ray is traced here in
     double precision: the wall colour where it lands, and how far it travels."""
-    W, H, FOVY, WALL = 96, 64, 50.0, 8.0
+    W, H, WALL = 96, 64, 8.0
 
     @staticmethod
     def wall_color(y):
         return np.stack([0.2 + 0.1 * y, np.full_like(y, 0.5), 0.8 - 0.05 * y], axis=-1)
 
-    def __init__(self):
+    def __init__(self, fovy=50.0, shift=0.0):
+        """`shift` moves the frame up (> 0) or down in NDC units: an off-axis projection."""
         W, H = self.W, self.H
-        self.projection = perspective(self.FOVY, W / H, 0.1, 100.0)
+        self.projection = perspective(fovy, W / H, 0.1, 100.0)
+        self.projection[1, 2] = shift
         view = np.eye(4)
         view[1, 3] = -1.0  # world -> camera: the camera sits at y = 1
         self.camera = ssrcl.Camera(view=view, projection=self.projection, width=W, height=H)
         xs, ys = np.meshgrid(np.arange(W) + 0.5, np.arange(H) + 0.5)
         # Camera-space (= world, up to the offset) direction through each pixel centre, z = -1.
-        d = np.stack([(2 * xs / W - 1) / self.projection[0, 0], (1 - 2 * ys / H) / self.projection[1, 1],
+        d = np.stack([(2 * xs / W - 1) / self.projection[0, 0], (1 - 2 * ys / H + shift) / self.projection[1, 1],
                       -np.ones_like(xs)], axis=-1)
         t_floor = np.where(d[..., 1] < 0, -1.0 / np.minimum(d[..., 1], -1e-12), np.inf)
         self.floor = t_floor < self.WALL
@@ -82,11 +84,15 @@ class PlaneMirror:
         self.expected_color = self.wall_color(hit_y)
         self.expected_distance = s * np.linalg.norm(d, axis=-1)
         # Where the hit lands on screen (pixels), to keep clear of the screen-edge fade.
-        hit_x = s * d[..., 0]
-        self.hit_px = (hit_x / self.WALL * self.projection[0, 0] + 1) * W / 2
-        self.hit_py = (1 - (hit_y - 1.0) / self.WALL * self.projection[1, 1]) * H / 2
+        self.hit_x, self.hit_y = s * d[..., 0], hit_y
+        self.hit_px, self.hit_py = self.on_screen(self.projection)
         # A pixel of wall spans this much height: the colour's change across one pixel.
         self.wall_height_per_pixel = 2 * self.WALL / (self.projection[1, 1] * H)
+
+    def on_screen(self, projection):
+        """Pixel coordinates of the hits in a camera at this one's place with this projection."""
+        return ((self.hit_x / self.WALL * projection[0, 0] + 1) * self.W / 2,
+                (1 - (self.hit_y - 1.0) / self.WALL * projection[1, 1] + projection[1, 2]) * self.H / 2)
 
     def pipeline(self, settings):
         p = ssrcl.Pipeline(ssrcl.Device())
@@ -216,6 +222,51 @@ class AnalyticMirrorTest(unittest.TestCase):
         np.testing.assert_allclose(distance[checked], scene.expected_distance[checked], rtol=1e-5)
         # Wall pixels (above max roughness) reflect nothing.
         self.assertTrue(np.all(rgba[~scene.floor] == 0.0))
+
+
+class ViewTest(unittest.TestCase):
+    """Auxiliary views: a frame looking down (off-axis) misses the wall above its top edge, which the
+    floor's nearest pixels reflect; a wider view from the same place shows it."""
+
+    def test_a_view_supplies_the_reflection_the_frame_misses(self):
+        scene, wide = PlaneMirror(shift=-0.6), PlaneMirror(fovy=100.0)
+        alone = np.array(scene.traced().output("reflection"))
+        p = scene.pipeline(ssrcl.TraceSettings(maxRoughness=0.5))
+        p.setView(0, wide.camera, wide.color, wide.depth, wide.normal, wide.roughness, label="wide")
+        self.assertEqual(p.viewCount(), 1)
+        p.commit()
+        p.execute()
+        rgba, source = p.output("reflection"), p.output("view")
+
+        # Floor pixels whose hit is above the frame (missed there) and well inside the wide view.
+        margin = 6
+        px, py = scene.on_screen(wide.projection)
+        missed = scene.floor & (scene.hit_py < 0) & (px > margin) & (px < scene.W - margin) & (py > margin)
+        self.assertGreater(np.count_nonzero(missed), 100)
+        self.assertTrue(np.all(alone[missed, 3] == 0.0))
+        np.testing.assert_allclose(rgba[missed, 3], 1.0, atol=1e-6)
+        np.testing.assert_array_equal(source[missed, 0], 1.0)  # the first view
+        np.testing.assert_array_equal(source[missed, 1], 1.0)  # all of A from views
+        # The wide view's pixel of wall: within half of one of its pixels of the exact height, and a
+        # tenth for the float32 reprojection into it (a hit on a pixel's border may take either).
+        tolerance = 0.6 * np.array([0.1, 0.0, 0.05]) * wide.wall_height_per_pixel
+        error = np.abs(rgba[missed, :3] - scene.expected_color[missed])
+        self.assertTrue(np.all(error <= tolerance + 1e-6), "worst colour error %s" % error.max(axis=0))
+
+        # Without its views the pipeline gives the single-frame pass again, bit for bit.
+        p.clearViews()
+        p.commit()
+        p.execute()
+        np.testing.assert_array_equal(bits(p.output("reflection")), bits(alone))
+
+    def test_bad_view_is_named(self):
+        scene, wide = PlaneMirror(), PlaneMirror(fovy=100.0)
+        p = scene.pipeline(ssrcl.TraceSettings(maxRoughness=0.5))
+        p.setView(0, wide.camera, wide.color, wide.depth[:10], wide.normal, label="wide.exr")
+        with self.assertRaisesRegex(ssrcl.InvalidInputError, "wide.exr"):
+            p.commit()
+        with self.assertRaisesRegex(ssrcl.InvalidArgumentError, "view index 2"):
+            p.setView(2, wide.camera, wide.color, wide.depth, wide.normal)
 
 
 class InputArrayTest(unittest.TestCase):

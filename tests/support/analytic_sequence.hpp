@@ -17,6 +17,7 @@ struct AnalyticSequence {
   int width = 64, height = 36;
   double degreesPerFrame = 2.0;
   double roughness = -1.0;  // >= 0: every surface this rough (the scenes are mirrors)
+  double fovYDegrees = 0.0; // > 0: the camera's vertical field of view instead of the scene's
 };
 
 // Writes the frames; returns the pattern naming them ("<directory>/<prefix>.####.exr").

@@ -1,0 +1,159 @@
+#include "view_stage.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <glm/gtc/matrix_inverse.hpp>
+
+#include "ssrcl/error.hpp"
+
+namespace ssrcl::detail {
+namespace {
+
+// A view without a roughness image and no constant roughness set has none of its pixels glossy.
+TraceSettings viewSettings(const ViewSource& view, const TraceSettings& s) {
+  TraceSettings v = s;
+  if (!view.inputs.has("roughness") && v.constantRoughness < 0.0f) v.constantRoughness = 1.0f;
+  return v;
+}
+
+}  // namespace
+
+std::string ViewStage::name(const ViewSource& view, int index) {
+  return view.label.empty() ? "view " + std::to_string(index + 1) : view.label;
+}
+
+void ViewStage::validate(const ViewSource& view, int index, const TraceSettings& s) {
+  const std::string what = name(view, index);
+  try {
+    validateCamera(view.camera, (what + " camera").c_str());
+    view.inputs.validate(view.camera, viewSettings(view, s));
+  } catch (const Error& e) {
+    throw Error(e.code(), what + ": " + e.what());
+  }
+}
+
+void ViewStage::configure(Device::Impl& device, const TraceSettings& s, size_t viewCount) {
+  program_ = device.program(
+      {"ssrcl_shared.h", "common.cl", "sequence.cl", "ggx.cl", "color_lookup.cl", "trace.cl", "view_trace.cl"},
+      {tracerDefine(s.tracer), roughnessMappingDefine(s.roughnessMapping), "SSRCL_COUNT_WORK=0", "SSRCL_VIEWS=1"});
+  units_.resize(viewCount);
+  for (auto& unit : units_) {
+    if (!unit) unit = std::make_unique<Unit>();
+    unit->setup.configure(device);
+    unit->thickness.configure(device, s);
+    unit->hzb.configure(device);
+    unit->colors.configure(device, s);
+    unit->kernel = cl::Kernel(program_, "trace_views");
+  }
+}
+
+void ViewStage::plan(DeviceBuffers& buffers, const std::vector<ViewSource>& views) {
+  colorChannels_.clear();
+  for (size_t k = 0; k < units_.size(); ++k) {
+    Unit& u = *units_[k];
+    const Camera& c = views[k].camera;
+    u.frame = FrameShape(c.width, c.height);
+    colorChannels_.push_back(views[k].inputs.view("color").channels);
+    u.setup.plan(buffers, u.frame, colorChannels_.back(), views[k].inputs.has("roughness"));
+    u.thickness.plan(buffers, u.frame);
+    u.hzb.plan(buffers, u.frame);
+    u.colors.plan(buffers, u.frame);
+  }
+  buffers.add(cameras_, units_.size() * sizeof(ViewCamera), CL_MEM_READ_ONLY);
+}
+
+void ViewStage::bind(cl::CommandQueue& q, const Camera& main, const std::vector<ViewSource>& views,
+                     const SetupStage& setup, const TraceStage& trace) {
+  const CameraConstants mainConstants(main);
+  std::copy(std::begin(mainConstants.invProj), std::end(mainConstants.invProj), invProj_);
+  width_ = main.width;
+  height_ = main.height;
+  std::vector<ViewCamera> cameras(units_.size());
+  const glm::dmat4 mainToWorld = glm::inverse(main.view);
+  for (size_t k = 0; k < units_.size(); ++k) {
+    Unit& u = *units_[k];
+    const Camera& c = views[k].camera;
+    const CameraConstants constants(c);
+    const glm::dmat4 fromMain = c.view * mainToWorld;
+    toRowMajor(fromMain, cameras[k].from_main);
+    toRowMajor(glm::inverse(fromMain), cameras[k].to_main);
+    std::copy(std::begin(constants.proj), std::end(constants.proj), cameras[k].proj);
+    cameras[k].width = c.width;
+    cameras[k].height = c.height;
+    cameras[k].near_plane = constants.nearPlane;
+    cameras[k].far_plane = constants.farPlane;
+
+    u.setup.bind(u.hzb.hzb, u.colors.pyramid);
+    u.thickness.bind(u.setup);
+    u.hzb.bind(q);
+    u.colors.bind(u.hzb);
+    bindArgs(u.kernel, 1, cameras_, setup.positions, setup.normals, setup.rayList, setup.pixelRays, u.hzb.hzb,
+             u.hzb.levels, u.setup.positions, u.setup.normals, u.setup.thickness, u.colors.pyramid, trace.rayHit,
+             trace.rayRadiance, trace.rayState);
+  }
+  if (!cameras.empty())
+    q.enqueueWriteBuffer(cameras_, CL_TRUE, 0, cameras.size() * sizeof(ViewCamera), cameras.data());
+}
+
+void ViewStage::prepare(cl::CommandQueue& q, std::vector<ViewSource>& views, const TraceSettings& s,
+                        StageEvents& events) {
+  for (size_t k = 0; k < units_.size(); ++k) {
+    Unit& u = *units_[k];
+    PipelineInputs& in = views[k].inputs;
+    const TraceSettings vs = viewSettings(views[k], s);
+    u.setup.enqueue(q,
+                    {in.pixels("color"), in.pixels("depth"), in.pixels("normal"),
+                     in.has("roughness") ? in.pixels("roughness") : nullptr},
+                    SetupStage::params(u.frame, CameraConstants(views[k].camera), vs, colorChannels_[k]), events);
+    u.hzb.enqueue(q, events);
+    u.colors.reduce(q, events);
+    u.thickness.enqueue(q, vs, events);
+  }
+}
+
+void ViewStage::limitRadiance(const float* color, size_t pixels, int channels) {
+  std::vector<float> means;
+  means.reserve(pixels);
+  for (size_t i = 0; i < pixels; ++i) {
+    const float* c = color + i * channels;
+    const float m = (c[0] + c[1] + c[2]) / 3.0f;
+    if (std::isfinite(m)) means.push_back(std::max(m, 0.0f));
+  }
+  if (means.empty()) {
+    radianceLimit_ = 0.0f;
+    return;
+  }
+  const auto at = means.begin() + means.size() * 99 / 100;
+  std::nth_element(means.begin(), at, means.end());
+  radianceLimit_ = 2.0f * *at;
+}
+
+void ViewStage::trace(cl::CommandQueue& q, const TraceParams& batch, StageEvents& events) {
+  ViewTraceParams p{};
+  std::copy(std::begin(invProj_), std::end(invProj_), p.inv_proj);
+  p.width = width_;
+  p.height = height_;
+  p.listed = batch.listed;
+  p.batch_size = batch.batch_size;
+  p.first_sample = batch.first_sample;
+  p.view_count = static_cast<cl_int>(units_.size());
+  p.max_iterations = batch.max_iterations;
+  p.mirror_roughness = batch.mirror_roughness;
+  p.cone_scale = batch.cone_scale;
+  p.linear_step = batch.linear_step;
+  p.edge_fade = batch.edge_fade;
+  p.radiance_limit = radianceLimit_;
+  const size_t range = roundUp(size_t(batch.listed) * batch.batch_size, 64);
+  const int ranks = std::min<int>(SSRCL_VIEWS_PER_RAY, static_cast<int>(units_.size()));
+  for (p.rank = 0; p.rank < ranks; ++p.rank) {
+    for (size_t k = 0; k < units_.size(); ++k) {
+      p.view = static_cast<cl_int>(k);
+      p.level_count = static_cast<cl_int>(units_[k]->frame.levels.size());
+      units_[k]->kernel.setArg(0, p);
+      q.enqueueNDRangeKernel(units_[k]->kernel, cl::NullRange, cl::NDRange(range), cl::NDRange(64), nullptr,
+                             newEvent(events, "views"));
+    }
+  }
+}
+
+}  // namespace ssrcl::detail

@@ -1,0 +1,144 @@
+// Auxiliary views: a ray the main frame leaves unresolved (a miss, a hit faded at the frame's
+// edge, a hit found after passing behind a surface the frame shows, which may hide what the ray
+// really meets, or a hit found within a surface's thickness, which may stand in front of it) continues in other G-buffers of the same scene. A ray is a straight line in
+// every perspective view, so it is clipped to the view's frustum, projected into the view's
+// screen and traced there by the same tracer (trace.cl) against the view's own depth, HZB,
+// thickness and normals (back faces included). The hit's colour is the view's.
+//
+// One pass per (rank, view): a ray takes part in the pass of view k at rank r when k is its r-th
+// best view, so every ray tries its views best first and at most SSRCL_VIEWS_PER_RAY of them.
+// Views are ranked by where the ray goes: those whose frustum holds the ray's origin first, then
+// by how far the ray heads along the view's line of sight (it stays longest in that view).
+
+inline float view_score(__global const ViewCamera* views, int k, float3 p, float3 dir) {
+  ViewCamera v = views[k];
+  float16 m = vload16(0, v.from_main);
+  float3 pk = mat_mul(m, (float4)(p, 1.0f)).xyz;
+  float3 dk = mat3_mul(m, dir);
+  float4 h = mat_mul(vload16(0, v.proj), (float4)(pk, 1.0f));
+  bool inside = h.w > 0.0f && fabs(h.x) <= h.w && fabs(h.y) <= h.w;
+  return (inside ? 2.0f : 0.0f) - dk.z / length(dk);
+}
+
+// Rank of view k among the ray's views (0 best; ties go to the lower index).
+inline int view_rank(__global const ViewCamera* views, int view_count, int k, float3 p, float3 dir) {
+  float own = view_score(views, k, p, dir);
+  int rank = 0;
+  for (int j = 0; j < view_count; ++j) {
+    if (j == k) continue;
+    float other = view_score(views, j, p, dir);
+    rank += other > own || (other == own && j < k);
+  }
+  return rank;
+}
+
+// Clips the ray p + u dir, u in [0, len], to the view's frustum (Liang-Barsky on its clip-space
+// planes, each affine in u). False when no part of it is inside.
+inline bool clip_to_frustum(float16 proj, float near_plane, float far_plane, float3 p, float3 dir, float len,
+                            float* u0, float* u1) {
+  float4 c0 = mat_mul(proj, (float4)(p, 1.0f)), cd = mat_mul(proj, (float4)(dir, 0.0f));
+  // Each plane as f(u) = a + b u >= 0: the four sides, then near and far in view depth.
+  float a[6] = {c0.w - c0.x, c0.w + c0.x, c0.w - c0.y, c0.w + c0.y, -p.z - near_plane, far_plane + p.z};
+  float b[6] = {cd.w - cd.x, cd.w + cd.x, cd.w - cd.y, cd.w + cd.y, -dir.z, dir.z};
+  float lo = 0.0f, hi = len;
+  for (int k = 0; k < (isfinite(far_plane) ? 6 : 5); ++k) {
+    if (b[k] == 0.0f) {
+      if (a[k] < 0.0f) return false;
+    } else if (b[k] > 0.0f) {
+      lo = fmax(lo, -a[k] / b[k]);
+    } else {
+      hi = fmin(hi, -a[k] / b[k]);
+    }
+  }
+  // Both ends a hair inside, so that they project onto the view's pixels.
+  float margin = 1e-4f * (hi - lo);
+  *u0 = lo + margin;
+  *u1 = hi - margin;
+  return hi > lo && isfinite(lo) && isfinite(hi);
+}
+
+__kernel void trace_views(ViewTraceParams params, __global const ViewCamera* views,
+                          __global const float4* main_positions, __global const float4* main_normals,
+                          __global const int* ray_list, __global const int* pixel_rays,
+                          __global const float* hzb, __global const HzbLevel* levels,
+                          __global const float4* positions, __global const float4* normals,
+                          __global const float* thickness, __global const float4* color_pyramid,
+                          __global float4* ray_hit, __global float4* ray_radiance, __global uchar* ray_state) {
+  const int2 main_size = (int2)(params.width, params.height);
+  const int batch_size = params.batch_size;
+  int gid = get_global_id(0);
+  if (gid >= params.listed * batch_size) return;
+  int i = ray_list[gid / batch_size];
+  int slot = gid % batch_size;
+  if (params.first_sample + slot >= pixel_rays[i]) return;
+  size_t record = (size_t)i * batch_size + slot;
+  float4 h = ray_hit[record];
+  float4 rad = ray_radiance[record];
+  uchar state = ray_state[record];
+  bool hit = h.w >= 0.0f, behind = (state & SSRCL_RAY_BEHIND) != 0, thick = (state & SSRCL_RAY_THICK) != 0;
+  if (hit && h.w >= 1.0f && !behind && !thick) return;  // resolved in full
+  if (!hit && !(dot(h.xyz, h.xyz) > 0.0f)) return;  // no ray (facing away, below the surface)
+
+  float3 v;
+  float3 p = pixel_view_point(vload16(0, params.inv_proj), main_size, (int2)(i % main_size.x, i / main_size.x),
+                              main_positions[i].w, &v);
+  float3 dir = hit ? normalize(h.xyz - p) : h.xyz;
+  float main_distance = hit ? length(h.xyz - p) : INFINITY;
+  if (view_rank(views, params.view_count, params.view, p, dir) != params.rank) return;
+
+  ViewCamera cam = views[params.view];
+  const float16 from_main = vload16(0, cam.from_main), proj = vload16(0, cam.proj);
+  float3 pk = mat_mul(from_main, (float4)(p, 1.0f)).xyz;
+  float3 dk = normalize(mat3_mul(from_main, dir));
+  // A hit the main frame found by crossing a surface is looked for up to just past it: the view
+  // may see it whole, or a surface in front of it that the frame hid.
+  float len = hit && !thick ? 1.02f * main_distance : 1e6f * fmax(length(pk), cam.near_plane);
+  float u0, u1;
+  if (!clip_to_frustum(proj, cam.near_plane, cam.far_plane, pk, dk, len, &u0, &u1)) return;
+
+  const int2 size = (int2)(cam.width, cam.height);
+  TraceScene sc = {size, hzb, levels, params.level_count, positions, normals, thickness, params.max_iterations, 0, 0, 0, 0, 0};
+  // Where the view shows the ray's origin, the ray is seen from its start: passing behind anything
+  // on its way puts its hit in doubt (a contact point the view does not see either). Where the
+  // origin is hidden (a surface seen from behind) or outside, only after it comes into view.
+  float4 ho = mat_mul(proj, (float4)(pk, 1.0f));
+  if (ho.w > 0.0f && fabs(ho.x) < ho.w && fabs(ho.y) < ho.w) {
+    int2 o = clamp(convert_int2(ndc_to_pixel(ho.xy / ho.w, size)), (int2)(0, 0), size - 1);
+    float shown = positions[o.y * size.x + o.x].w;
+    sc.seen = fabs(shown + pk.z) <= 0.02f * -pk.z;
+  }
+  ScreenRay ray;
+  int2 cell;
+  float t = trace_segment(&sc, proj, params.linear_step, pk + dk * u0, pk + dk * u1, dk, &ray, &cell);
+  if (t < 0.0f) return;
+
+  cell = clamp(cell, (int2)(0, 0), size - 1);
+  float3 hit_k = ray_point(&ray, t);
+  float3 hit_main = mat_mul(vload16(0, cam.to_main), (float4)(hit_k, 1.0f)).xyz;
+  float distance = length(hit_main - p);
+  float confidence = edge_confidence(ray_screen(&ray, t), size, params.edge_fade);
+  // Taken when the view sees more of the hit than the frame did; or, where the frame's hit is in
+  // doubt, when the view sees the ray's whole way to its hit (it did not pass behind anything: a
+  // contact point hidden from the view too stays the frame's), nearer than a frame hit found
+  // behind a surface, or anywhere for one found only within a thickness.
+  bool clear = !sc.behind && confidence > 0.0f;
+  bool nearer = behind && clear && distance < 0.98f * main_distance;
+  bool crossing = thick && clear;
+  if (!(confidence > fmax(h.w, 0.0f) || nearer || crossing)) return;
+
+  // The frame's own hit, confirmed: it keeps the frame's colour (its own render, at its own
+  // resolution) and the confidence the view adds.
+  if (hit && fabs(distance - main_distance) <= 0.02f * main_distance) {
+    ray_hit[record] = (float4)(h.xyz, fmax(h.w, confidence));
+    ray_state[record] = (uchar)(state & ~(SSRCL_RAY_BEHIND | SSRCL_RAY_THICK));
+    return;
+  }
+  float nr_w = main_normals[i].w;
+  float alpha = nr_w <= params.mirror_roughness ? 0.0f : fmax(roughness_to_alpha(nr_w, SSRCL_ROUGHNESS_MAPPING), 1e-4f);
+  float3 color = sanitize_radiance3(hit_color(&sc, color_pyramid, proj, &ray, t, cell, distance, alpha, params.cone_scale).xyz);
+  float mean = (color.x + color.y + color.z) / 3.0f;
+  if (mean > params.radiance_limit) color *= params.radiance_limit / mean;
+  ray_hit[record] = (float4)(hit_main, confidence);
+  ray_radiance[record] = (float4)(color, rad.w);
+  ray_state[record] = (uchar)((1 + params.view) << SSRCL_RAY_SOURCE_SHIFT);
+}
