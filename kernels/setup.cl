@@ -24,9 +24,10 @@ inline int glossy_rays(float roughness, int samples_per_pixel, float full_rays_r
 
 // The viewing lines of view_line (common.cl) as an affine map of pixel coordinates, built once per
 // work-item: view_line's homogeneous point inv_proj * (ndc, 0, 1) is affine in the pixel, so a line
-// costs a few multiply-adds instead of a matrix product and six divisions (8 unprojections per
-// pixel were most of setup's time). eye is the centre of projection scaled to w = 1 (lines' directions
-// only change scale, which steps and depths divide out), w = 0 for orthographic cameras.
+// costs a few multiply-adds instead of a matrix product and six divisions (five lines per pixel,
+// centre and corners, were most of setup's time). eye is the centre of projection scaled to w = 1
+// (lines' directions only change scale, which steps and depths divide out), w = 0 for orthographic
+// cameras.
 typedef struct {
   float4 at_origin, per_x, per_y, eye;
 } PixelLines;
