@@ -90,6 +90,7 @@ struct NativeMirrorTrace::Impl {
       offset += lw * lh;
       if (lw == 1 && lh == 1) break;
     }
+    buildPixelLines();
     const size_t n = size_t(w) * h;
     hzb.resize(offset);
     thickness.resize(n);
@@ -111,12 +112,27 @@ struct NativeMirrorTrace::Impl {
     origin = e.w != 0.0f ? vec3(e) / e.w : vec3(a) / a.w;
   }
 
+  // setup.cl pixel_lines / pixel_line: viewing lines as an affine map of pixel coordinates.
+  vec4 lineAtOrigin, linePerX, linePerY, lineEye;
+  void buildPixelLines() {
+    linePerX = invProj[0] * (2.0f / float(w));
+    linePerY = invProj[1] * (-2.0f / float(h));
+    lineAtOrigin = invProj[3] - invProj[0] + invProj[1];
+    lineEye = invProj[2].w != 0.0f ? invProj[2] / invProj[2].w : invProj[2];
+  }
+  vec3 pixelLine(vec2 pixel, vec3& v) const {
+    const vec4 a = lineAtOrigin + pixel.x * linePerX + pixel.y * linePerY;
+    v = vec3(a) * lineEye.w - vec3(lineEye) * a.w;
+    return lineEye.w != 0.0f ? vec3(lineEye) : vec3(a) / a.w;
+  }
+
+  // setup.cl plane_depth_at.
   float planeDepthAt(vec2 pixel, vec3 p, vec3 n) const {
-    vec3 origin, step;
-    viewLine(pixelToNdc(pixel), origin, step);
-    const float denom = glm::dot(step, n);
-    if (std::fabs(denom) < 1e-20f) return -1.0f;
-    const float depth = glm::dot(p - origin, n) / denom - origin.z;
+    vec3 v;
+    const vec3 origin = pixelLine(pixel, v);
+    const float denom = glm::dot(v, n);
+    if (std::fabs(denom) < 1e-20f * std::fabs(v.z)) return -1.0f;
+    const float depth = glm::dot(p - origin, n) * -v.z / denom - origin.z;
     return depth > 0.0f && std::isfinite(depth) ? depth : -1.0f;
   }
 
@@ -124,8 +140,9 @@ struct NativeMirrorTrace::Impl {
     for (int x = 0; x < w; ++x) {
       const size_t i = size_t(y) * w + x;
       const float d = g.depth.data[i];
-      vec3 origin, step;
-      viewLine(pixelToNdc(vec2(x + 0.5f, y + 0.5f)), origin, step);
+      vec3 v;
+      const vec3 origin = pixelLine(vec2(x + 0.5f, y + 0.5f), v);
+      const vec3 step = v * (-1.0f / v.z);
       const vec3 viewDir = glm::normalize(step);
       const vec3 p = origin + (d + origin.z) * step;
       const bool surface = std::isfinite(d) && d >= nearPlane && d <= farPlane && d < kBackgroundDepth &&

@@ -21,8 +21,9 @@ class HzbStage {
 };
 
 // Runs a pyramid reduction kernel (arguments: pyramid, level table, destination level) over
-// levels 1.. of `frame`, one event each under `stage`.
+// levels 1.. of `frame`, one event each under `stage`, in work-groups of SSRCL_TILE^2 work-items
+// `groupWidth` wide.
 void reducePyramid(cl::CommandQueue& q, cl::Kernel& kernel, const FrameShape& frame, StageEvents& events,
-                   const std::string& stage);
+                   const std::string& stage, int groupWidth = SSRCL_TILE);
 
 }  // namespace ssrcl::detail

@@ -77,17 +77,6 @@ inline float edge_confidence(float2 s, int2 size, float edge_fade) {
   return clamp(border / (edge_fade * (float)min(size.x, size.y)), 0.0f, 1.0f);
 }
 
-// Planar depth where the viewing line through screen point `pixel` meets the plane through p with
-// normal n, or a negative value where that line runs parallel to it or meets it behind the eye.
-inline float plane_depth_at(float16 inv_proj, int2 size, float2 pixel, float3 p, float3 n) {
-  float3 origin, step;
-  view_line(inv_proj, pixel_to_ndc(pixel, size), &origin, &step);
-  float denom = dot(step, n);
-  if (fabs(denom) < 1e-20f) return -1.0f;
-  float depth = dot(p - origin, n) / denom - origin.z;
-  return depth > 0.0f && isfinite(depth) ? depth : -1.0f;
-}
-
 // Work is classified in tiles of SSRCL_TILE^2 pixels (the 2D work-group size): kernels that run
 // per tile take a list of tile indices and a 1D range of work-groups, group g covering tile
 // tile_list[g].

@@ -22,6 +22,43 @@ inline int glossy_rays(float roughness, int samples_per_pixel, float full_rays_r
   return clamp((int)ceil((float)samples_per_pixel * roughness / full_rays_roughness), 1, samples_per_pixel);
 }
 
+// The viewing lines of view_line (common.cl) as an affine map of pixel coordinates, built once per
+// work-item: view_line's homogeneous point inv_proj * (ndc, 0, 1) is affine in the pixel, so a line
+// costs a few multiply-adds instead of a matrix product and six divisions (five lines per pixel,
+// centre and corners, were most of setup's time). eye is the centre of projection scaled to w = 1
+// (lines' directions only change scale, which steps and depths divide out), w = 0 for orthographic
+// cameras.
+typedef struct {
+  float4 at_origin, per_x, per_y, eye;
+} PixelLines;
+
+inline PixelLines pixel_lines(float16 inv_proj, int2 size) {
+  float4 col_x = inv_proj.s048c, col_y = inv_proj.s159d, col_w = inv_proj.s37bf;
+  float4 per_x = col_x * (2.0f / (float)size.x), per_y = col_y * (-2.0f / (float)size.y);
+  float4 eye = inv_proj.s26ae;
+  return (PixelLines){col_w - col_x + col_y, per_x, per_y, eye.w != 0.0f ? eye / eye.w : eye};
+}
+
+// The line through screen point `pixel`: its origin (the eye for perspective cameras) and an
+// unnormalised direction v; the step view_line returns is v / -v.z.
+inline float3 pixel_line(const PixelLines* lines, float2 pixel, float3* v) {
+  float4 a = lines->at_origin + pixel.x * lines->per_x + pixel.y * lines->per_y;
+  float4 e = lines->eye;
+  *v = a.xyz * e.w - e.xyz * a.w;
+  return e.w != 0.0f ? e.xyz : a.xyz / a.w;
+}
+
+// Planar depth where the line through screen point `pixel` meets the plane through p with normal n,
+// or a negative value where it runs parallel to it or meets it behind the eye.
+inline float plane_depth_at(const PixelLines* lines, float2 pixel, float3 p, float3 n) {
+  float3 v;
+  float3 origin = pixel_line(lines, pixel, &v);
+  float denom = dot(v, n);  // dot(step, n) * -v.z
+  if (fabs(denom) < 1e-20f * fabs(v.z)) return -1.0f;
+  float depth = dot(p - origin, n) * -v.z / denom - origin.z;
+  return depth > 0.0f && isfinite(depth) ? depth : -1.0f;
+}
+
 // Runs in SSRCL_TILE^2 work-groups; listed pixels are counted in local memory first so the global
 // counters (ray_count[SSRCL_COUNT_*]) see one atomic per group instead of one per pixel.
 __kernel void setup(SetupParams params, __global const float* color_in,
@@ -35,6 +72,7 @@ __kernel void setup(SetupParams params, __global const float* color_in,
   __local int group_count, group_base, group_rays, group_traced, group_reflecting;
   const int2 size = (int2)(params.width, params.height);
   const float16 normal_matrix = vload16(0, params.normal_matrix), inv_proj = vload16(0, params.inv_proj);
+  const PixelLines lines = pixel_lines(inv_proj, size);
   const float near_plane = params.near_plane, far_plane = params.far_plane;
   const int color_channels = params.color_channels, classify = params.classify;
   const float constant_roughness = params.constant_roughness;
@@ -46,8 +84,11 @@ __kernel void setup(SetupParams params, __global const float* color_in,
     float d = depth_in[i];
     // Cycles' background depth (1e10) means no surface even under an infinite far plane.
     bool surface = isfinite(d) && d >= near_plane && d <= far_plane && d < SSRCL_BACKGROUND_DEPTH;
-    float3 view_dir;
-    float3 p = pixel_view_point(inv_proj, size, (int2)(x, y), d, &view_dir);
+    float3 v;
+    float3 origin = pixel_line(&lines, (float2)((float)x + 0.5f, (float)y + 0.5f), &v);
+    float3 step = v * (-1.0f / v.z);
+    float3 view_dir = normalize(step);
+    float3 p = origin + (d + origin.z) * step;
     surface = surface && all(isfinite(p));
 
     // Normals need not be unit length: scaled to their largest component first, so that neither
@@ -78,7 +119,7 @@ __kernel void setup(SetupParams params, __global const float* color_in,
     if (surface && normal_ok) {
       for (int corner = 0; corner < 4; ++corner) {
         float2 at = (float2)((float)(x + (corner & 1)), (float)(y + (corner >> 1)));
-        float cd = plane_depth_at(inv_proj, size, at, p, nv);
+        float cd = plane_depth_at(&lines, at, p, nv);
         // Near-edge-on planes can reach any depth within the pixel; half the centre depth bounds
         // what a real surface does there.
         if (cd > 0.0f) nearest = fmin(nearest, fmax(cd, 0.5f * d));

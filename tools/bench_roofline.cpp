@@ -4,6 +4,7 @@
 #include <iomanip>
 #include <thread>
 
+#include "device_copy_time.hpp"
 #include "native_mirror_trace.hpp"
 #include "ssrcl/pipeline.hpp"
 
@@ -16,6 +17,7 @@ RooflineResult runRoofline(const Device& device, const BenchInput& input, int re
   p.settings() = settings;
   p.commit();
   bench::NativeMirrorTrace native(input.gbuffer, input.camera, settings);
+  bench::DeviceCopyTime depthCopy(device.info(), size_t(input.camera.width) * input.camera.height * sizeof(float));
   RooflineResult r;
   r.input = input.name;
   r.width = input.camera.width;
@@ -25,6 +27,7 @@ RooflineResult runRoofline(const Device& device, const BenchInput& input, int re
   p.execute();  // warm-up: kernel compilation, first touch
   native.run(r.threads);
   std::vector<std::vector<double>> cl(3), nat(3);
+  std::vector<double> copy;
   // Alternating, so both see the same load on a shared machine.
   for (int k = 0; k < repetitions; ++k) {
     p.execute();
@@ -37,11 +40,13 @@ RooflineResult runRoofline(const Device& device, const BenchInput& input, int re
     nat[0].push_back(n.setup);
     nat[1].push_back(n.hzb);
     nat[2].push_back(n.trace);
+    copy.push_back(depthCopy.run());
   }
   for (size_t s = 0; s < 3; ++s) {
     r.opencl.push_back(stageStats(cl[s]));
     r.native.push_back(stageStats(nat[s]));
   }
+  r.depthCopy = stageStats(copy);
   r.rays = native.rays();
   r.hits = bench::compareHitDistances(native.distance(), p.output("distance").data);
   return r;
@@ -57,6 +62,9 @@ void printRoofline(std::ostream& out, const std::vector<RooflineResult>& results
       out << "    " << std::left << std::setw(6) << r.stages[s] << std::right << std::fixed << std::setprecision(2)
           << "  OpenCL " << std::setw(9) << cl << "  native " << std::setw(9) << nat << "  OpenCL / native "
           << std::setprecision(2) << (nat > 0 ? cl / nat : 0.0);
+      if (r.stages[s] == "hzb")
+        out << "  (device copy of the depth buffer " << std::setprecision(2) << r.depthCopy.medianMs
+            << " ms, hzb / copy " << (r.depthCopy.medianMs > 0 ? cl / r.depthCopy.medianMs : 0.0) << ")";
       if (r.stages[s] == "trace")
         out << "  (" << std::setprecision(1) << r.rays / (cl * 1e3) << " vs " << r.rays / (nat * 1e3)
             << " Mrays/s)";

@@ -19,6 +19,7 @@ struct RooflineResult {
   long long rays = 0;
   std::vector<std::string> stages;           // setup, hzb, trace
   std::vector<StageStats> opencl, native;    // per stage, milliseconds
+  StageStats depthCopy;                      // clEnqueueCopyBuffer of the depth buffer, same run
   bench::HitAgreement hits;
 };
 
