@@ -7,6 +7,7 @@
 
 #include "ssrcl/error.hpp"
 #include "ssrcl/specular_albedo.hpp"
+#include "settings_validation.hpp"
 
 namespace ssrcl {
 
@@ -18,8 +19,7 @@ void applyGlossyPassForm(Image& reflection, const GBuffer& g, const Camera& came
   if (!fromF0 && !fromBase)
     throw Error(ErrorCode::InvalidArgument,
                 "glossy-pass output form: needs an F0 pass, or base colour and metallic passes");
-  if (constantRoughness && !(*constantRoughness >= 0.0f && *constantRoughness <= 1.0f))
-    throw Error(ErrorCode::InvalidArgument, "glossy-pass output form: parameter roughness must be in [0, 1]");
+  detail::validateConstantRoughness(constantRoughness);
   const int w = reflection.width, h = reflection.height;
   const std::size_t pixels = std::size_t(w) * h;
   if (g.normal.data.size() != 3 * pixels || (!constantRoughness && g.roughness.data.size() != pixels) ||

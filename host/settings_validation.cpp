@@ -8,6 +8,11 @@
 namespace ssrcl {
 namespace detail {
 
+void validateConstantRoughness(std::optional<float> roughness) {
+  if (roughness && !(*roughness >= 0.0f && *roughness <= 1.0f))
+    throw Error(ErrorCode::InvalidArgument, "parameter roughness must be in [0, 1]");
+}
+
 int maxIterations(const TraceSettings& s) {
   if (s.maxIterations > 0) return s.maxIterations;
   return s.tracer == Tracer::HiZ ? 512 : 1 << 20;
@@ -46,8 +51,7 @@ void validateSettings(const TraceSettings& s) {
     throw Error(ErrorCode::InvalidArgument, "parameter environment-intensity must be in [0, 1e6]");
   if (!std::isfinite(s.environmentRotation))
     throw Error(ErrorCode::InvalidArgument, "parameter environment-rotation must be a finite number of degrees");
-  if (s.constantRoughness && !(*s.constantRoughness >= 0.0f && *s.constantRoughness <= 1.0f))
-    throw Error(ErrorCode::InvalidArgument, "parameter roughness must be in [0, 1]");
+  detail::validateConstantRoughness(s.constantRoughness);
   if (s.samplesPerPixel < 1 || s.samplesPerPixel > 65536)
     throw Error(ErrorCode::InvalidArgument, "parameter spp must be in [1, 65536]");
   if (!(s.fullRaysRoughness >= 0.0f && s.fullRaysRoughness <= 1.0f))

@@ -255,13 +255,19 @@ inline float hit_mip_level(const TraceScene* sc, float16 proj, const ScreenRay* 
   return log2(fmax(2.0f * distance * alpha * cone_scale * px_per_unit, 1.0f));
 }
 
+// Whether a hit on pixel q reads the colour pyramid over its footprint: prefiltering on
+// (cone_scale > 0), a rough ray (alpha > 0: not a mirror ray) and a pixel the pyramid holds
+// (specular pixels it leaves out read their own colour, setup.cl).
+inline bool prefiltered_hit(const TraceScene* sc, int q, float alpha, float cone_scale) {
+  return cone_scale > 0.0f && alpha > 0.0f && !specular_pixel(sc->normals[q].w);
+}
+
 // The colour at a ray's hit on pixel `cell` at `distance` from its origin, looked up at once (the
-// views' hits: their pyramids keep coverage weights, not hit counts). Prefiltered (cone_scale > 0,
-// alpha > 0: not a mirror ray) but on specular pixels, which the pyramid leaves out (setup.cl).
+// views' hits: their pyramids keep coverage weights, not hit counts).
 inline float4 hit_color(const TraceScene* sc, __global const float4* color_pyramid, float16 proj,
                         const ScreenRay* ray, float t, int2 cell, float distance, float alpha, float cone_scale) {
   int q = cell.y * sc->size.x + cell.x;
-  if (!(cone_scale > 0.0f && alpha > 0.0f) || specular_pixel(sc->normals[q].w)) return color_pyramid[q];
+  if (!prefiltered_hit(sc, q, alpha, cone_scale)) return color_pyramid[q];
   return pyramid_sample(color_pyramid, sc->levels, sc->level_count, ray_screen(ray, t),
                         hit_mip_level(sc, proj, ray, t, distance, alpha, cone_scale));
 }
@@ -333,23 +339,19 @@ __kernel void trace_rays(TraceParams params, __global const float* hzb, __global
   float2 s = ray_screen(&ray, t);
   float3 hit = ray_point(&ray, t);
   cell = clamp(cell, (int2)(0, 0), size - 1);
-  float4 radiance;
-  bool prefiltered = params.cone_scale > 0.0f && !mirror && !specular_pixel(normals[cell.y * size.x + cell.x].w);
-  if (prefiltered) {
-    // Prefiltered hit, looked up once the batch's hits are counted (hit_prefilter.cl): recorded as
-    // the screen position and the mip of its footprint (hit_mip_level). A hit on a specular pixel
-    // (which the pyramid leaves out, setup.cl) reads its own colour.
-    radiance = (float4)(s, -1.0f - hit_mip_level(&sc, proj, &ray, t, length(hit - p), alpha, params.cone_scale), 0.0f);
-  } else {
-    radiance = color_pyramid[cell.y * size.x + cell.x];
-  }
+  int q = cell.y * size.x + cell.x;
+  // A prefiltered hit is looked up once the batch's hits are counted (hit_prefilter.cl): recorded
+  // as the screen position and the mip of its footprint.
+  bool prefiltered = prefiltered_hit(&sc, q, mirror ? 0.0f : alpha, params.cone_scale);
+  float4 radiance = prefiltered
+                        ? (float4)(s, -1.0f - hit_mip_level(&sc, proj, &ray, t, length(hit - p), alpha, params.cone_scale), 0.0f)
+                        : color_pyramid[q];
   // A hit on a glossy pixel: its screen colour is what it reflects toward the camera, not toward
   // this pixel. With its non-reflected radiance known (`base`), the hit's radiance is that plus
   // its specular colour times what one more ray, reflected at the hit, finds. Where that ray finds
   // nothing on screen (confidence c2 < 1) the screen colour stays the best guess for that share.
   // A pixel wrongly marked glossy (a material that writes no roughness reads 0) has specular
   // colour 0 and keeps its base: its screen colour.
-  int q = cell.y * size.x + cell.x;
   float4 nq = normals[q];
   if (!prefiltered && params.has_base && nq.w < params.glossy_hit_roughness) {
     float alpha_q = fmax(roughness_to_alpha(nq.w, SSRCL_ROUGHNESS_MAPPING), 1e-4f);

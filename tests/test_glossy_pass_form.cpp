@@ -219,6 +219,16 @@ TEST(GlossyPassForm, MatchesCyclesOnATintedFloor) {
   const ssrcl::Image incident = pipeline.output("reflection");
   ssrcl::Image glossy = incident;
   ssrcl::applyGlossyPassForm(glossy, g, ref.camera, std::nullopt);
+  for (float bad : {-1.0f, 1.5f, std::nanf("")}) {  // -1 once meant "no constant": now a bad value
+    ssrcl::Image untouched = incident;
+    try {
+      ssrcl::applyGlossyPassForm(untouched, g, ref.camera, bad);
+      ADD_FAILURE() << "constant roughness " << bad << " was accepted";
+    } catch (const ssrcl::Error& e) {
+      EXPECT_EQ(e.code(), ssrcl::ErrorCode::InvalidArgument);
+      EXPECT_NE(std::string(e.what()).find("roughness"), std::string::npos) << e.what();
+    }
+  }
 
   ssrcl::test::CyclesReference asIs = ref;  // the glossy-pass form is compared with Cycles unscaled
   std::fill(asIs.scale.begin(), asIs.scale.end(), 1.0);
