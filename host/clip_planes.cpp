@@ -27,12 +27,16 @@ void setClipPlanes(Camera& camera, double n, double f) {
   }
 }
 
-// Half the nearest surface: no surface is clipped, and rays are clipped well before the camera.
+// Near: half the nearest surface, so no surface is clipped and rays are clipped well before the
+// camera. Far: infinity, but for an orthographic camera, whose depth row has no infinite form
+// (a far plane of 1e10 squeezes every depth into float rounding), twice the farthest surface.
 void fitClipPlanes(Camera& camera, const Image& planarDepth) {
-  float nearest = INFINITY;
+  float nearest = INFINITY, farthest = 0.0f;
   for (float d : planarDepth.data)
-    if (detail::isSurfaceDepth(d)) nearest = std::min(nearest, d);
-  setClipPlanes(camera, std::isfinite(nearest) ? 0.5 * nearest : 1.0, INFINITY);
+    if (detail::isSurfaceDepth(d)) nearest = std::min(nearest, d), farthest = std::max(farthest, d);
+  const double n = std::isfinite(nearest) ? 0.5 * nearest : 1.0;
+  const bool perspective = camera.projection[2][3] != 0.0;
+  setClipPlanes(camera, n, perspective ? INFINITY : 2.0 * std::max(double(farthest), n));
 }
 
 // Every surface must lie between the planes (a renderer clips what does not); 0.1% of slack

@@ -262,9 +262,23 @@ class ExrFile {
   const std::string& path() const { return path_; }
   Imf::MultiPartInputFile& file() { return *file_; }
 
+  // A bare name that several parts hold is refused rather than read from the first: Houdini
+  // writes each render var as a part of channels R, G, B (parts "N", "albedo", "C": see README,
+  // renderer conventions), so "R" alone could be a normal's x.
   ChannelRef find(const std::string& fullName) const {
+    std::vector<int> holders;
     for (int p = 0; p < file_->parts(); ++p)
-      if (file_->header(p).channels().findChannel(fullName)) return ref(p, fullName);
+      if (file_->header(p).channels().findChannel(fullName)) holders.push_back(p);
+    if (holders.size() > 1) {
+      std::string qualified;
+      for (int p : holders)
+        if (file_->header(p).hasName())
+          qualified += (qualified.empty() ? "'" : ", '") + file_->header(p).name() + "." + fullName + "'";
+      throw Error(ErrorCode::InvalidInput, path_ + ": channel '" + fullName + "' is in " +
+                                               std::to_string(holders.size()) + " parts; name it with its part (" +
+                                               qualified + ")");
+    }
+    if (holders.size() == 1) return ref(holders[0], fullName);
     for (int p = 0; p < file_->parts(); ++p) {
       if (!file_->header(p).hasName()) continue;
       const std::string prefix = file_->header(p).name() + ".";
@@ -316,18 +330,48 @@ class ExrFile {
   std::unique_ptr<Imf::MultiPartInputFile> file_;
 };
 
-std::vector<std::string> splitNames(const std::string& list) {
-  std::vector<std::string> names;
+// The items of a `separator`-separated list, spaces around each trimmed.
+std::vector<std::string> split(const std::string& list, char separator) {
+  std::vector<std::string> items;
   std::size_t start = 0;
   for (;;) {
-    const std::size_t end = list.find(',', start);
-    std::string name = list.substr(start, end == std::string::npos ? std::string::npos : end - start);
-    name.erase(0, name.find_first_not_of(' '));
-    name.erase(name.find_last_not_of(' ') + 1);
-    names.push_back(name);
-    if (end == std::string::npos) return names;
+    const std::size_t end = list.find(separator, start);
+    std::string item = list.substr(start, end == std::string::npos ? std::string::npos : end - start);
+    item.erase(0, item.find_first_not_of(' '));
+    item.erase(item.find_last_not_of(' ') + 1);
+    items.push_back(item);
+    if (end == std::string::npos) return items;
     start = end + 1;
   }
+}
+
+std::vector<std::string> splitNames(const std::string& list) { return split(list, ','); }
+std::vector<std::string> splitAlternatives(const std::string& list) { return split(list, '|'); }
+
+// Whether `file` holds every channel of a comma-separated list, unambiguously.
+bool holdsAll(const ExrFile& file, const std::string& names) {
+  for (const std::string& name : splitNames(names)) {
+    try {
+      if (file.find(name).part < 0) return false;
+    } catch (const Error&) {  // in several parts: another alternative may name it exactly
+      return false;
+    }
+  }
+  return true;
+}
+
+// "a,b,c|d,e,f" lists alternatives in order of preference (renderer presets name each layout a
+// renderer is known to write): the first the file holds is read. A list without '|' is returned
+// as is, so a missing channel is reported by name.
+std::string chooseAlternative(const ExrFile& file, const std::string& names, const char* label) {
+  if (names.find('|') == std::string::npos) return names;
+  const std::vector<std::string> alternatives = splitAlternatives(names);
+  for (const std::string& alternative : alternatives)
+    if (holdsAll(file, alternative)) return alternative;
+  std::string tried;
+  for (const std::string& alternative : alternatives) tried += (tried.empty() ? "'" : ", '") + alternative + "'";
+  throw Error(ErrorCode::InvalidInput, file.path() + ": none of the channel sets " + tried + " for the " + label +
+                                           " pass is there (has: " + file.listChannels() + ")");
 }
 
 struct Pass {
@@ -399,7 +443,12 @@ GBuffer loadGBuffer(const GBufferSource& source) {
     const std::string name = !source.depthChannel.empty() ? source.depthChannel
                              : source.layer.empty()       ? std::string("Z")
                                                           : source.layer + ".Depth.Z";
-    if (!path.empty() && files.try_emplace(path, path).first->second.find(name).part >= 0)
+    const auto holdsAny = [&](const ExrFile& file) {
+      const std::vector<std::string> alternatives = splitAlternatives(name);
+      return std::any_of(alternatives.begin(), alternatives.end(),
+                         [&](const std::string& alternative) { return holdsAll(file, alternative); });
+    };
+    if (!path.empty() && holdsAny(files.try_emplace(path, path).first->second))
       passes.push_back({"depth", &gbuffer.depth, 1, source.positionFile, source.depthChannel, "Depth.Z", "Z"});
   }
 
@@ -408,9 +457,10 @@ GBuffer loadGBuffer(const GBufferSource& source) {
     const std::string& path = pass.file.empty() ? source.file : pass.file;
     if (path.empty())
       throw Error(ErrorCode::InvalidArgument, std::string("no input file given for the ") + pass.label + " pass");
+    ExrFile& file = files.try_emplace(path, path).first->second;
     std::vector<std::string> names;
     if (!pass.names.empty()) {
-      names = splitNames(pass.names);
+      names = splitNames(chooseAlternative(file, pass.names, pass.label));
     } else if (source.layer.empty()) {
       names = splitNames(pass.plain);
     } else {
@@ -421,7 +471,6 @@ GBuffer loadGBuffer(const GBufferSource& source) {
       throw Error(ErrorCode::InvalidArgument, std::string(pass.label) + " needs " + std::to_string(pass.channels) +
                                                   " comma-separated channel name(s), got '" + pass.names + "'");
     }
-    ExrFile& file = files.try_emplace(path, path).first->second;
     for (int c = 0; c < pass.channels; ++c) {
       const ChannelRef ref = file.find(names[c]);
       if (ref.part < 0)

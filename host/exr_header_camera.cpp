@@ -88,7 +88,8 @@ Camera fromEyeToNdc(const glm::dmat4& eyeToNdc, const glm::dmat4& view, const Pi
 //   do Houdini's (a Mantra file's oiiotool dump in github.com/ynput/ayon-houdini/issues/76).
 // - the camera space: OpenEXR's looks down +z (Arnold's file too); Houdini's looks down -z (the
 //   same dump: its worldToNDC's w is minus its camera z). A perspective projection's w tells
-//   them apart; an orthographic one's cannot, and is read as OpenEXR's.
+//   them apart; an orthographic one's cannot: both readings are kept (HeaderCamera::reversed)
+//   for orientHeaderCamera to choose from the passes.
 // The z the files hold is discarded.
 std::optional<HeaderCamera> standardCamera(const Imf::Header& header, const Imath::M44f& toCamera,
                                            const PixelBox& display, const std::string& path) {
@@ -98,17 +99,23 @@ std::optional<HeaderCamera> standardCamera(const Imf::Header& header, const Imat
   const glm::dmat4 fileCamera = fromImath(toCamera);
   const glm::dmat4 cameraToProjected = fromImath(*projected) * glm::inverse(fileCamera);
   const bool lookingDownMinusZ = cameraToProjected[2][3] < 0.0;  // w = -z: Houdini's camera space
+  const glm::dvec4 w(cameraToProjected[0][3], cameraToProjected[1][3], cameraToProjected[2][3],
+                     cameraToProjected[3][3]);
+  const bool orthographic = std::abs(w.z) <= 1e-6 * glm::length(w);  // w constant: no divide to tell by
   const bool yUp = cameraToProjected[1][1] > 0.0;                // camera y up is projected y up: screen space
   glm::dmat4 toUnit(1.0);  // from the file's projected space to our NDC, y up: screen space already is
   if (!yUp) {
     toUnit[0][0] = 2.0, toUnit[3][0] = -1.0;  // x' = 2x - w
     toUnit[1][1] = -2.0, toUnit[3][1] = 1.0;  // y' = w - 2y
   }
-  const glm::dmat4 view = lookingDownMinusZ ? fileCamera : kFlipZ * fileCamera;
   const std::string name = toNdc ? "worldToNDC" : "worldToScreen";
+  const auto reading = [&](const glm::dmat4& view) {
+    return fromEyeToNdc(toUnit * fromImath(*projected) * glm::inverse(view), view, display,
+                        path + ": header attribute '" + name + "'");
+  };
   HeaderCamera h;
-  h.camera = fromEyeToNdc(toUnit * fromImath(*projected) * glm::inverse(view), view, display,
-                          path + ": header attribute '" + name + "'");
+  h.camera = reading(lookingDownMinusZ ? fileCamera : kFlipZ * fileCamera);
+  if (orthographic) h.reversed = reading(fileCamera);
   h.attributes = "worldToCamera" + std::string(lookingDownMinusZ ? " (-z forward)" : "") + " + " + name +
                  (yUp ? " (screen space)" : "");
   return h;

@@ -351,9 +351,11 @@ __kernel void trace_rays(TraceParams params, __global const float* hzb, __global
   // its specular colour times what one more ray, reflected at the hit, finds. Where that ray finds
   // nothing on screen (confidence c2 < 1) the screen colour stays the best guess for that share.
   // A pixel wrongly marked glossy (a material that writes no roughness reads 0) has specular
-  // colour 0 and keeps its base: its screen colour.
+  // colour 0 and keeps its base: its screen colour. A mirror ray is one sample nothing averages:
+  // it bounces only where the second ray is deterministic too (a mirror-like hit); a rough hit's
+  // one second ray shows there as noise (mirror sample: floor within 25% of Cycles 0.90 -> 0.74).
   float4 nq = normals[q];
-  if (!prefiltered && params.has_base && nq.w < params.glossy_hit_roughness) {
+  if (!prefiltered && params.has_base && nq.w < params.glossy_hit_roughness && (!mirror || nq.w <= mirror_roughness)) {
     float alpha_q = fmax(roughness_to_alpha(nq.w, SSRCL_ROUGHNESS_MAPPING), 1e-4f);
     float pdf2;
     float3 dir2 = sample_reflection(-dir, nq.xyz, nq.w <= mirror_roughness, alpha_q, sample_2d(q, sample, seed + 1u),

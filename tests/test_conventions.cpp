@@ -1,12 +1,12 @@
 // Passes in other renderers' conventions (issue 12), made from the bundled Blender samples: each
 // variant traces, through `ssrcl trace` as a user runs it, to the original's reflection pass; each
 // wrong declaration is refused before tracing with exit 2, naming the pass and the fixing option.
-#include <gtest/gtest.h>
-
 #include <OpenEXR/ImfFloatAttribute.h>
+#include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfIntAttribute.h>
 #include <OpenEXR/ImfMatrixAttribute.h>
 #include <OpenEXR/ImfStringAttribute.h>
+#include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
@@ -16,6 +16,7 @@
 #include <map>
 
 #include "exr_header_camera.hpp"
+#include "scenes/analytic_scene.hpp"
 #include "ssrcl/ssrcl.hpp"
 #include "support/exr_fixtures.hpp"
 #include "support/run_command.hpp"
@@ -94,10 +95,11 @@ std::vector<ExrChannel> cameraNormals(const Sample& s, const std::string& prefix
   return {{prefix + axes[0], n[0]}, {prefix + axes[1], n[1]}, {prefix + axes[2], n[2]}};
 }
 
-std::vector<ExrChannel> worldNormals(const Sample& s, const std::string& prefix, int negatedAxis = -1) {
-  std::vector<ExrChannel> n = {{prefix + "X", s.channel(s.g.normal, 0)},
-                               {prefix + "Y", s.channel(s.g.normal, 1)},
-                               {prefix + "Z", s.channel(s.g.normal, 2)}};
+std::vector<ExrChannel> worldNormals(const Sample& s, const std::string& prefix, int negatedAxis = -1,
+                                     const char* axes = "XYZ") {
+  std::vector<ExrChannel> n = {{prefix + axes[0], s.channel(s.g.normal, 0)},
+                               {prefix + axes[1], s.channel(s.g.normal, 1)},
+                               {prefix + axes[2], s.channel(s.g.normal, 2)}};
   if (negatedAxis >= 0)
     for (float& v : n[negatedAxis].values) v = -v;
   return n;
@@ -193,6 +195,40 @@ ssrcl::Camera cameraForWindow(const Sample& s, int x0, int y0, int x1, int y1) {
 
 std::string cli(const std::string& args) { return shellQuote(SSRCL_CLI) + " " + args; }
 
+// Two reflection passes agree on every pixel of `reference`'s. Conversions round in float: a ray
+// may land a pixel away here and there, and with prefiltered hits (kernels/hit_prefilter.cl) that
+// also moves its footprint's weights: measured up to 0.16% of values off (the glossy sample's
+// overscan variant), so the bound is 0.2%.
+void expectSamePass(const std::string& reference, const std::string& out) {
+  const auto a = ssrcl::test::readExr(reference), b = ssrcl::test::readExr(out);
+  ASSERT_EQ(a.width, b.width);
+  ASSERT_EQ(a.height, b.height);
+  long long off = 0, pixels = 0;
+  double sum = 0.0;
+  for (const char* c : {"R", "G", "B", "A", "distance"}) {
+    for (size_t i = 0; i < a.channels.at(c).values.size(); ++i) {
+      const double d = std::abs(double(a.channels.at(c).values[i]) - b.channels.at(c).values[i]);
+      off += d > 1e-3;
+      sum += d;
+      ++pixels;
+    }
+  }
+  EXPECT_LE(off, pixels / 500) << out;
+  EXPECT_LT(sum / pixels, 2e-5) << out;
+}
+
+// Refused before tracing, with a message naming `pass` and `fix`.
+void expectRefused(const std::string& input, const std::string& options, const std::string& pass,
+                   const std::string& fix) {
+  const std::string out = input + ".refused.exr";
+  const auto r = runCommand(cli("trace " + shellQuote(input) + " " + options + " -o " + shellQuote(out)));
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+  EXPECT_NE(r.output.find(pass), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find(fix), std::string::npos) << r.output;
+  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
 class Conventions : public testing::TestWithParam<const char*> {
  protected:
   static inline ssrcl::test::TempDir* dir = nullptr;
@@ -272,40 +308,12 @@ class Conventions : public testing::TestWithParam<const char*> {
 
   void expectSameAs(const std::string& out, const Imath::Box2i* display) {
     const Sample& s = sample();
-    const auto a = ssrcl::test::readExr(originalPass()), b = ssrcl::test::readExr(out);
-    ASSERT_EQ(a.width, b.width);
-    ASSERT_EQ(a.height, b.height);
     if (display) {
+      const auto b = ssrcl::test::readExr(out);
       EXPECT_EQ(b.displayWindow, *display);
       EXPECT_EQ(b.dataWindow, Imath::Box2i({0, 0}, {s.w - 1, s.h - 1}));
     }
-    // Conversions round in float: a ray may land a pixel away here and there, and with prefiltered
-    // hits (kernels/hit_prefilter.cl) that also moves its footprint's weights: measured up to 0.16%
-    // of values off (the glossy sample's overscan variant), so the bound is 0.2%.
-    long long off = 0, pixels = 0;
-    double sum = 0.0;
-    for (const char* c : {"R", "G", "B", "A", "distance"}) {
-      for (size_t i = 0; i < a.channels.at(c).values.size(); ++i) {
-        const double d = std::abs(double(a.channels.at(c).values[i]) - b.channels.at(c).values[i]);
-        off += d > 1e-3;
-        sum += d;
-        ++pixels;
-      }
-    }
-    EXPECT_LE(off, pixels / 500) << out;
-    EXPECT_LT(sum / pixels, 2e-5) << out;
-  }
-
-  // Refused before tracing, with a message naming `pass` and `fix`.
-  void expectRefused(const std::string& input, const std::string& options, const std::string& pass,
-                     const std::string& fix) {
-    const std::string out = input + ".refused.exr";
-    const auto r = runCommand(cli("trace " + shellQuote(input) + " " + options + " -o " + shellQuote(out)));
-    EXPECT_EQ(r.exitCode, 2) << r.output;
-    EXPECT_NE(r.output.find(pass), std::string::npos) << r.output;
-    EXPECT_NE(r.output.find(fix), std::string::npos) << r.output;
-    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
-    EXPECT_FALSE(std::filesystem::exists(out));
+    expectSamePass(originalPass(), out);
   }
 };
 
@@ -372,6 +380,31 @@ TEST_P(Conventions, RenderManPresetWithHeaderCamera) {
                     "renderman-near.exr: the header camera (worldToCamera + worldToNDC, clipNear + clipFar)", "--camera");
     }
   }
+}
+
+// Layouts a preset lists as alternatives (README, renderer conventions): Karma's colour and normals
+// as Mantra names planes (N.x) and as a Houdini multi-part file holds them (parts C and N of
+// channels R, G, B: OpenImageIO issue 3593; where the depth part's channel is named is not in that
+// source, so depth is a bare `depth` here). Each reads to the original's pass; the multi-part
+// file's bare R, in two parts, is never read as colour. (RenderMan's "Z|z": test_io,
+// ChannelAlternatives.)
+TEST_P(Conventions, PresetLayoutAlternatives) {
+  if (std::string(GetParam()) != "mirror") GTEST_SKIP() << "channel layouts do not depend on the scene";
+  const Sample& s = sample();
+  ExrOptions houdini;
+  houdini.editHeader = [&](Imf::Header& h) {
+    addStandardCamera(h, s, Projected::Houdini, s.camera, Imath::Box2i({0, 0}, {s.w - 1, s.h - 1}));
+  };
+  const std::vector<ExrChannel> depth = {{"depth", s.channel(s.g.depth, 0)}};
+  expectSameAsOriginal(
+      variant("mantra", baseChannels(s, "", "roughness") + depth + worldNormals(s, "N.", -1, "xyz"), houdini),
+      "--renderer karma");
+
+  const std::vector<ExrChannel> beauty = baseChannels(s, "", "roughness"), normals = worldNormals(s, "", -1, "RGB");
+  const std::string parts = dir->file(s.name + ".houdini-parts.exr");
+  ssrcl::test::writeMultiPartExr(parts, s.w, s.h, {{"C", beauty}, {"N", normals}, {"depth", depth}}, houdini);
+  expectSameAsOriginal(parts, "--renderer karma");
+  expectRefused(parts, "--renderer karma --color-channels R,G,B", "'R' is in 2 parts", "'C.R'");
 }
 
 // Arnold's, as its files hold them (ArnoldFileHeaderCamera): planar Z, world N, worldToCamera +
@@ -580,6 +613,67 @@ TEST(ConventionCheck, CorpusScenes) {
   if (scenes == 0) GTEST_SKIP() << "no corpus scenes in " << corpus;
 }
 
+// Orthographic header cameras: without a perspective divide, worldToCamera + worldToNDC read the
+// same whether the file's camera looks down its +z (OpenEXR) or -z (Houdini), and the passes
+// decide. The bundled samples are perspective renders, so the frame is an analytic orthographic
+// one (scenes/analytic_scene.hpp) traced with its camera as a sidecar: the same passes with the
+// camera in the header, in either layout, trace to that pass; frames that cannot tell are refused.
+TEST(OrthographicHeaderCamera, PassesDecideWhichWayItLooks) {
+  ssrcl::test::TempDir dir("ssrcl-ortho-header");
+  const ssrcl::scenes::Scene scene = ssrcl::scenes::makeScene("spheres_on_mirror");
+  Sample s;
+  s.camera = ssrcl::scenes::makeCamera(scene.view, 160, 90);
+  s.camera.projection = glm::ortho(-8.0, 8.0, -4.5, 4.5, 0.1, 1000.0);
+  s.camera.nearPlane = 0.1;
+  s.camera.farPlane = 1000.0;
+  s.g = ssrcl::scenes::renderGBuffer(scene, s.camera);
+  s.w = s.camera.width;
+  s.h = s.camera.height;
+  const auto plain = baseChannels(s, "", "roughness") + std::vector<ExrChannel>{{"Z", s.channel(s.g.depth, 0)}};
+  const auto write = [&](const std::string& tag, const std::vector<ExrChannel>& channels, Projected layout) {
+    ExrOptions options;
+    options.editHeader = [&](Imf::Header& h) {
+      addStandardCamera(h, s, layout, s.camera, Imath::Box2i({0, 0}, {s.w - 1, s.h - 1}));
+    };
+    const std::string path = dir.file(tag + ".exr");
+    ssrcl::test::writeExr(path, s.w, s.h, channels, options);
+    return path;
+  };
+  const std::string reference = dir.file("sidecar.exr"), referencePass = dir.file("sidecar.refl.exr");
+  ssrcl::test::writeExr(reference, s.w, s.h, plain + worldNormals(s, "N."));
+  ssrcl::saveCameraJson(dir.file("sidecar.camera.json"), s.camera);
+  const auto r = runCommand(cli("trace " + shellQuote(reference) + " --layer '' -o " + shellQuote(referencePass)));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+
+  const auto expectTraced = [&](const std::string& input, const std::string& options, const std::string& looking) {
+    const std::string out = input + ".refl.exr";
+    const auto t = runCommand(cli("trace " + shellQuote(input) + " --layer '' " + options + " -o " + shellQuote(out)));
+    ASSERT_EQ(t.exitCode, 0) << t.output;
+    expectSamePass(referencePass, out);
+    const std::string inputs =
+        Imf::InputFile(out.c_str()).header().typedAttribute<Imf::StringAttribute>("ssrcl/inputs").value();
+    EXPECT_NE(inputs.find(looking), std::string::npos) << inputs;
+    RecordProperty(std::filesystem::path(input).stem().string(), inputs);
+  };
+  // World normals decide (they face the camera), or positions do (they lie in front of it).
+  expectTraced(write("exr-normals", plain + worldNormals(s, "N."), Projected::StandardNdc), "", "looking down +z");
+  expectTraced(write("houdini-normals", plain + worldNormals(s, "N."), Projected::Houdini), "", "looking down -z");
+  const auto cameraSpace = baseChannels(s, "", "roughness") + positions(s, "P.") + cameraNormals(s, "N.", "XYZ", false);
+  expectTraced(write("houdini-positions", cameraSpace, Projected::Houdini),
+               "--position P.X,P.Y,P.Z --normal-space camera-gl", "looking down -z");
+  expectTraced(write("exr-positions", cameraSpace, Projected::StandardNdc),
+               "--position P.X,P.Y,P.Z --normal-space camera-gl", "looking down +z");
+
+  // Camera-space normals without positions cannot tell; nor can normals half of which face away.
+  expectRefused(write("camera-normals", plain + cameraNormals(s, "N.", "XYZ", false), Projected::Houdini),
+                "--layer '' --normal-space camera-gl", "is orthographic", "cannot tell either; give --camera");
+  std::vector<ExrChannel> halfAway = worldNormals(s, "N.");
+  for (int i = 0; i < s.w * s.h; i += 2)
+    for (ExrChannel& c : halfAway) c.values[i] = -c.values[i];
+  expectRefused(write("half-away", plain + halfAway, Projected::StandardNdc), "--layer ''", "is orthographic",
+                "the frame does not tell either");
+}
+
 // A header exactly as Arnold 4.2 (MtoA) wrote it: github.com/zewt/exrflatten, sample/sample2.exr
 // (deep scan lines, 500x500, channels R G B A Z ZBack N.X N.Y N.Z P.X P.Y P.Z id; matrices, clip
 // planes and samples below copied from the file). Its Z is planar depth (within 1.4e-4 of the camera-space z
@@ -663,6 +757,31 @@ TEST(HoudiniHeaderCamera, MantraDumpReadsAsItsCamera) {
   }
   EXPECT_NEAR(read->camera.projection[0][0], 2.41422, 1e-4);
   EXPECT_NEAR(read->camera.projection[1][1], 2.41422 * 1280.0 / 720.0, 1e-3);
+}
+
+// A 3Delight file's header, from its exrheader dump in github.com/johannesvollmer/exrs/issues/90
+// (640x480, fieldOfViewHorizontal 45.6036, fieldOfViewVertical 35): worldToCamera the identity and
+// a worldToNDC in screen space, y up, whose w is +z. Read so, points down +z fall on the frame's
+// centre, and the frame's right and top edges lie at the dump's own fields of view.
+TEST(DelightHeaderCamera, DumpReadsAsItsCamera) {
+  const Imath::M44f toNdc(2.3787f, 0, 0, 0, 0, 3.17159f, 0, 0, 0, 0, 1, 1, 0, 0, -0.001f, 0);
+  Imf::Header header(640, 480);
+  header.insert("worldToCamera", Imf::M44fAttribute(Imath::M44f()));
+  header.insert("worldToNDC", Imf::M44fAttribute(toNdc));
+  const std::optional<ssrcl::HeaderCamera> read = ssrcl::detail::cameraFromHeader(header, "3delight.exr");
+  ASSERT_TRUE(read && read->problem.empty()) << (read ? read->problem : "no camera");
+  EXPECT_FALSE(read->reversed) << "perspective: the divide tells the camera's axis";
+  const auto screen = [&](double x, double y, double z) {
+    return ssrcl::cameraToScreen(read->camera, glm::dvec3(read->camera.view * glm::dvec4(x, y, z, 1.0)));
+  };
+  for (const double d : {2.0, 20.0}) {
+    const glm::dvec3 centre = screen(0.0, 0.0, d);
+    EXPECT_NEAR(centre.x, 320.0, 1e-3) << d;
+    EXPECT_NEAR(centre.y, 240.0, 1e-3) << d;
+    EXPECT_NEAR(centre.z, d, 1e-4 * d) << "planar depth";
+    EXPECT_NEAR(screen(d * std::tan(45.6036 / 2 * M_PI / 180), 0.0, d).x, 640.0, 0.05) << "right edge";
+    EXPECT_NEAR(screen(0.0, d * std::tan(35.0 / 2 * M_PI / 180), d).y, 0.0, 0.05) << "top edge";
+  }
 }
 
 // `ssrcl trace --append` on an Arnold file keeps its arnold/* attributes beside the pass's camera,

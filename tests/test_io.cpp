@@ -329,6 +329,44 @@ TEST(LoadGBufferErrors, MissingRoughnessUnlessConstant) {
   expectError([&] { loadGBuffer(fromFile(file)); }, ErrorCode::InvalidInput, file, {"'ViewLayer.roughness.X'"});
 }
 
+// Houdini writes each render var as a part of channels R, G, B (a file with parts N, albedo and C:
+// github.com/AcademySoftwareFoundation/OpenImageIO/issues/3593). A bare "R" is then in every part:
+// refused, naming the qualified names, instead of reading the first part's (the normals) as colour.
+TEST(LoadGBufferErrors, BareNameInSeveralPartsIsRefused) {
+  test::TempDir dir;
+  const std::string file = dir.file("houdini.exr");
+  const std::vector<ExrPart> parts = {{"N", {channel("R", 1), channel("G", 2), channel("B", 3)}},
+                                      {"C", {channel("R", 4), channel("G", 5), channel("B", 6), channel("Z", 7)}},
+                                      {"roughness", {channel("Y", 8)}}};
+  test::writeMultiPartExr(file, kWidth, kHeight, parts);
+  GBufferSource source = fromFile(file, "");
+  source.depthChannel = "C.Z";
+  source.normalChannels = "N.R,N.G,N.B";
+  source.roughnessChannel = "roughness.Y";
+  expectError([&] { loadGBuffer(source); }, ErrorCode::InvalidInput, file, {"'R' is in 2 parts", "'N.R', 'C.R'"});
+  source.colorChannels = "C.R,C.G,C.B";
+  expectGBuffer(loadGBuffer(source), {parts[1].channels[0], parts[1].channels[1], parts[1].channels[2]},
+                parts[1].channels[3], {parts[0].channels[0], parts[0].channels[1], parts[0].channels[2]},
+                &parts[2].channels[0]);
+}
+
+// "a|b" lists: the first alternative the file holds is read; when it holds none, every
+// alternative is named.
+TEST(LoadGBuffer, ChannelAlternatives) {
+  test::TempDir dir;
+  const std::string file = dir.file("alternatives.exr");
+  const std::vector<ExrChannel> ch = {channel("R", 1),   channel("G", 2),   channel("B", 3),   channel("z", 4),
+                                      channel("N.R", 5), channel("N.G", 6), channel("N.B", 7), channel("roughness", 8)};
+  test::writeExr(file, kWidth, kHeight, ch);
+  GBufferSource source = fromFile(file, "");
+  source.depthChannel = "Z|z";
+  source.normalChannels = "N.x,N.y,N.z|N.R,N.G,N.B";
+  expectGBuffer(loadGBuffer(source), {ch[0], ch[1], ch[2]}, ch[3], {ch[4], ch[5], ch[6]}, &ch[7]);
+  source.normalChannels = "N.x,N.y,N.z|N.X,N.Y,N.Z";
+  expectError([&] { loadGBuffer(source); }, ErrorCode::InvalidInput, file,
+              {"none of the channel sets 'N.x,N.y,N.z', 'N.X,N.Y,N.Z' for the normal pass", "has: B, G, N.B"});
+}
+
 TEST(LoadGBufferErrors, MultiPartListsQualifiedNames) {
   test::TempDir dir;
   const std::string file = dir.file("parts.exr");

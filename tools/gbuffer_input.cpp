@@ -54,10 +54,16 @@ void addChannelOptions(CLI::App& cmd, GBufferInputOptions& o) {
   o.layerOption =
       cmd.add_option("--layer", o.source.layer, "Layer prefix of the default channel names; \"\" for plain R,G,B / Z / N.X")
           ->group(in);
-  o.colorOption = cmd.add_option("--color-channels", o.source.colorChannels, "Color channel names, e.g. R,G,B")->group(in);
-  o.depthOption = cmd.add_option("--depth-channel", o.source.depthChannel, "Depth channel name")->group(in);
-  o.normalOption =
-      cmd.add_option("--normal-channels", o.source.normalChannels, "Normal channel names, e.g. N.X,N.Y,N.Z")->group(in);
+  o.colorOption =
+      cmd.add_option("--color-channels", o.source.colorChannels,
+                     "Color channel names, e.g. R,G,B ('|' separates alternatives, the first present is read)")
+          ->group(in);
+  o.depthOption =
+      cmd.add_option("--depth-channel", o.source.depthChannel, "Depth channel name ('|' separates alternatives)")
+          ->group(in);
+  o.normalOption = cmd.add_option("--normal-channels", o.source.normalChannels,
+                                  "Normal channel names, e.g. N.X,N.Y,N.Z ('|' separates alternatives)")
+                       ->group(in);
   cmd.add_option("--position", o.source.positionChannels,
                  "World-position channels (e.g. P.X,P.Y,P.Z) to take depth from instead of a depth pass")
       ->group(in);
@@ -111,6 +117,7 @@ Frame loadFrame(const GBufferInputOptions& o, const std::string& input, const st
                     " has no camera in its header (worldToCamera with worldToNDC or worldToScreen, or V-Ray's "
                     "cameraTransform with cameraFov); give --camera");
   if (useHeader && !g.headerCamera->problem.empty()) throw Error(ErrorCode::InvalidInput, g.headerCamera->problem);
+  if (useHeader) orientHeaderCamera(*g.headerCamera, g, source, headerCameraFile(source));
   const std::string cameraName = useHeader ? "the header camera (" + g.headerCamera->attributes + ")" : cameraPath;
   const Camera display = useHeader ? g.headerCamera->camera : loadCameraJson(cameraPath);
   if (display.width != g.displayWindow.width() || display.height != g.displayWindow.height())

@@ -5,14 +5,17 @@
 namespace ssrcl::cli {
 namespace {
 
-// Empty channel fields keep the loader's defaults for the layer. Sources and what is unverified:
-// README, Input.
+// Empty channel fields keep the loader's defaults for the layer; "a|b" lists the layouts a
+// renderer is known to write, tried in order. Sources and what is unverified: README, Input.
 const std::vector<RendererPreset>& presets() {
   static const std::vector<RendererPreset> all = {
       {"blender", "ViewLayer", "", "", "", DepthKind::Planar, NormalSpace::World},
       {"arnold", "", "R,G,B", "Z", "N.X,N.Y,N.Z", DepthKind::Planar, NormalSpace::World},
-      {"renderman", "", "R,G,B", "Z", "Nn.x,Nn.y,Nn.z", DepthKind::Planar, NormalSpace::Camera},
-      {"karma", "", "R,G,B", "depth", "N.x,N.y,N.z", DepthKind::Planar, NormalSpace::World},
+      // ILM's driver names variable z "Z"; RenderMan 22's names every variable but r, g, b, a as itself.
+      {"renderman", "", "R,G,B", "Z|z", "Nn.x,Nn.y,Nn.z", DepthKind::Planar, NormalSpace::Camera},
+      // Mantra's single-part planes (N.x), and Houdini's multi-part files: one part per render var,
+      // channels R, G, B.
+      {"karma", "", "R,G,B|C.R,C.G,C.B", "depth", "N.x,N.y,N.z|N.R,N.G,N.B", DepthKind::Planar, NormalSpace::World},
       {"vray", "", "R,G,B", "Z", "normals.R,normals.G,normals.B", DepthKind::Planar, NormalSpace::CameraGL},
   };
   return all;

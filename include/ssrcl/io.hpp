@@ -28,7 +28,9 @@ const char* normalSpaceName(NormalSpace space);  // "world", "camera", "camera-g
 //   color     {layer}.Combined.R,G,B   depth {layer}.Depth.Z
 //   normal    {layer}.Normal.X,Y,Z     roughness {layer}.roughness.X
 // With layer == "" the defaults are plain names: R,G,B  Z  N.X,N.Y,N.Z  roughness
-// In multi-part files a channel may also be found as part name + "." + channel name.
+// In multi-part files a channel may also be found as part name + "." + channel name; a bare name
+// that several parts hold is refused. A list may give alternatives, "N.x,N.y,N.z|N.R,N.G,N.B":
+// the first one the file holds is read.
 struct GBufferSource {
   std::string file;
   std::string colorFile, depthFile, normalFile, roughnessFile;
@@ -69,6 +71,10 @@ struct HeaderCamera {
   Camera camera;
   bool clipPlanesKnown = false;
   std::string attributes;  // which attributes it came from, for messages
+  // Orthographic worldToCamera + worldToNDC only: the matrices cannot tell OpenEXR's camera space
+  // (+z forward) from Houdini's (-z forward), so `camera` is the first reading and `reversed` the
+  // same camera looking the other way; orientHeaderCamera chooses from the passes.
+  std::optional<Camera> reversed;
   // Non-empty when the header has camera attributes that cannot be used: why (naming the file and
   // attribute). Only an error when the header camera is needed (no sidecar, no --camera).
   std::string problem;
@@ -129,8 +135,16 @@ struct InputCheckReport {
 };
 InputCheckReport checkInputConventions(const GBuffer& gbuffer, const GBufferSource& source, const Camera& camera);
 
+// Settles a header camera that HeaderCamera::reversed says could look either way, from the
+// passes `gbuffer` holds as loaded: visible surfaces face the camera and lie in front of it, so
+// world positions (when `source` names them) or world-space normals pick the reading under which
+// most of the frame does. Clears `reversed`. Throws Error(InvalidInput) naming `file` when the
+// frame does not decide it (camera-space normals and no positions, or no clear majority).
+void orientHeaderCamera(HeaderCamera& camera, const GBuffer& gbuffer, const GBufferSource& source,
+                        const std::string& file);
 
-// Near = half the nearest surface in `planarDepth` (no surface lost), far = infinity; the
+// Near = half the nearest surface in `planarDepth` (no surface lost), far = infinity (for an
+// orthographic camera twice the farthest surface: its depth row has no infinite form); the
 // projection's depth row is rebuilt to match (OpenGL layout).
 void fitClipPlanes(Camera& camera, const Image& planarDepth);
 
