@@ -99,7 +99,7 @@ Action addTraceCommand(CLI::App& app) {
   cmd->add_option("--neighbour", o->neighbours,
                   "A view rendered at another moment: a neighbouring frame of the shot (its sidecar or header "
                   "camera), for static geometry; its hits this frame shows have moved are not taken (repeatable; "
-                  "as `ssrcl batch --neighbours`)")
+                  "what `ssrcl batch` takes as a frame's neighbours)")
       ->allow_extra_args(false);
   addChannelOptions(*cmd, o->in);
   addPassFileOptions(*cmd, o->in);
