@@ -42,7 +42,7 @@ void ViewStage::configure(Device::Impl& device, const TraceSettings& s, size_t v
     unit->setup.configure(device);
     unit->thickness.configure(device, s);
     unit->hzb.configure(device);
-    unit->colors.configure(device, s);
+    unit->colors.configure(device, s, false);
     unit->kernel = cl::Kernel(program_, "trace_views");
   }
 }
