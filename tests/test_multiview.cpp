@@ -234,6 +234,38 @@ TEST(Multiview, ClearedViewsGiveTheSinglePassBitForBit) {
   EXPECT_TRUE(p.output("view").empty());
 }
 
+// The sliding window's premise: replacing one view leaves the others' device images as they
+// were prepared. After view 0's colour is blacked out in memory, replacing view 1 gives the same
+// pass (view 0 was not read again); replacing view 0 shows the black (so the test can fail).
+TEST(Multiview, ReplacingAViewLeavesTheOthersPrepared) {
+  const Scene scene = makeScene("spheres_on_mirror");
+  ViewParams frameParams = scene.view, wideParams = scene.view;
+  frameParams.fovYDegrees = 30.0;
+  wideParams.fovYDegrees = 75.0;
+  const ssrcl::Camera camera = makeCamera(frameParams, 160, 90);
+  const AnalyticGBuffer g = renderGBuffer(scene, camera);
+  View wide = renderView(scene, wideParams, 320, 180);
+  const View same = renderView(scene, frameParams, 160, 90);
+  ssrcl::Device device = testDevice();
+  ssrcl::Pipeline p(device);
+  p.setGBuffer(g);
+  p.setCamera(camera);
+  p.setView(0, wide.g, wide.camera);
+  p.setView(1, same.g, same.camera);
+  p.commit();
+  p.execute();
+  const ssrcl::Image prepared = p.output("reflection");
+  std::fill(wide.g.color.data.begin(), wide.g.color.data.end(), 0.0f);
+  p.setView(1, same.g, same.camera);
+  p.commit();
+  p.execute();
+  EXPECT_EQ(p.output("reflection").data, prepared.data);
+  p.setView(0, wide.g, wide.camera);
+  p.commit();
+  p.execute();
+  EXPECT_NE(p.output("reflection").data, prepared.data);
+}
+
 TEST(Multiview, BadViewsAreNamed) {
   const Scene scene = makeScene("spheres_on_mirror");
   const ssrcl::Camera camera = makeCamera(scene.view, 64, 36);
