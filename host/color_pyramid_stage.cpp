@@ -5,12 +5,14 @@
 
 namespace ssrcl::detail {
 
-void ColorPyramidStage::configure(Device::Impl& device, const TraceSettings& s) {
+void ColorPyramidStage::configure(Device::Impl& device, const TraceSettings& s, bool hitCounts) {
   reduce_ = s.prefilter;
+  hitCounts_ = hitCounts;
   if (!reduce_) return;
   const cl::Program& program =
       device.program({"ssrcl_shared.h", "common.cl", "color_lookup.cl", "color_pyramid.cl", "hit_prefilter.cl"});
   reduce_kernel_ = cl::Kernel(program, "color_reduce");
+  if (!hitCounts) return;
   count_ = cl::Kernel(program, "count_hits");
   weights_ = cl::Kernel(program, "weights_from_counts");
   lookup_ = cl::Kernel(program, "prefilter_hits");
@@ -19,7 +21,7 @@ void ColorPyramidStage::configure(Device::Impl& device, const TraceSettings& s) 
 void ColorPyramidStage::plan(DeviceBuffers& buffers, const FrameShape& frame) {
   frame_ = frame;
   buffers.add(pyramid, (reduce_ ? frame.pyramidTexels() : frame.pixels()) * sizeof(cl_float4));
-  buffers.add(counts_, reduce_ ? frame.pixels() * sizeof(cl_int) : 0);
+  buffers.add(counts_, reduce_ && hitCounts_ ? frame.pixels() * sizeof(cl_int) : 0);
 }
 
 void ColorPyramidStage::bind(const HzbStage& hzb) {

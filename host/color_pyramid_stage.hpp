@@ -12,7 +12,9 @@ class TraceStage;
 
 class ColorPyramidStage {
  public:
-  void configure(Device::Impl& device, const TraceSettings& s);
+  // hitCounts false: a pyramid read at once with setup's weights (an auxiliary view's), which
+  // needs neither the hit counts nor the kernels that weight and look up by them.
+  void configure(Device::Impl& device, const TraceSettings& s, bool hitCounts = true);
   void plan(DeviceBuffers& buffers, const FrameShape& frame);
   void bind(const HzbStage& hzb, const SetupStage& setup, const TraceStage& trace);
   // A pyramid read at once, with the weights setup wrote (an auxiliary view's: no hit counts).
@@ -26,7 +28,7 @@ class ColorPyramidStage {
   cl::Buffer pyramid;  // (rgb * hits, hits) per texel, levels as the HZB's; level 0 (rgb, hits)
 
  private:
-  bool reduce_ = false;
+  bool reduce_ = false, hitCounts_ = true;
   FrameShape frame_;
   cl::Kernel reduce_kernel_, count_, weights_, lookup_;
   cl::Buffer counts_;

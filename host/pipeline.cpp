@@ -19,6 +19,7 @@
 namespace ssrcl {
 
 using namespace detail;
+static_assert(Pipeline::kMaxViews == SSRCL_MAX_VIEWS, "the API's view count is the kernels'");
 
 struct Pipeline::Impl {
   Device device;
@@ -40,11 +41,10 @@ struct Pipeline::Impl {
   int colorChannels = 0;
   bool hasBase = false;
   std::map<std::string, PipelineInputs::Shape> committedInputs;  // new images of these shapes need no commit
+  // Each view's images are uploaded and its setup, HZB, colours and thickness computed once, at
+  // the first execute() after its setView or a commit that changed kernels or buffers: a batch's
+  // frames share them, and replacing one view (a sliding window of frames) leaves the others.
   size_t committedViews = 0;
-  // The views' images are uploaded and their setup, HZB, colours and thickness computed once, at
-  // the first execute() after setView/clearViews or a commit that changed kernels or buffers: a
-  // batch's frames share them.
-  bool viewsPrepared = false;
 
   DeviceBuffers buffers;
   SetupStage setup;
@@ -121,7 +121,8 @@ void Pipeline::Impl::plan() {
     what += (k == 0 ? " with views " : ", ") + ViewStage::name(views[k], static_cast<int>(k)) + " (" +
             std::to_string(views[k].camera.width) + "x" + std::to_string(views[k].camera.height) + ")";
   const bool reallocated = buffers.allocate(d, what);
-  if (reconfigure || reallocated) viewsPrepared = false;
+  if (reconfigure || reallocated)
+    for (ViewSource& v : views) v.prepared = false;
   // Views' cameras are written at bind: with views, every commit binds.
   if (!reconfigure && !reshaped && !reallocated && views.empty()) return;  // the same kernels and buffers, bound
 
@@ -171,8 +172,7 @@ void Pipeline::Impl::run() {
   stage = "thickness";
   thickness.enqueue(q, s, events);
   stage = "views";
-  if (!viewsPrepared) viewStage.prepare(q, views, s, events);
-  viewsPrepared = true;
+  viewStage.prepare(q, views, s, events);
   if (!views.empty()) viewStage.limitRadiance(inputs.pixels("color"), frame.pixels(), colorChannels);
   stage = "setup";
   const SetupStage::Counts counts = setup.readCounts(q);
@@ -272,7 +272,8 @@ void Pipeline::setGBuffer(const GBuffer& gbuffer) {
   if (!gbuffer.specular.empty()) setImage("specular", gbuffer.specular);
 }
 
-void Pipeline::setView(int index, const GBuffer& gbuffer, const Camera& camera, const std::string& label) {
+void Pipeline::setView(int index, const GBuffer& gbuffer, const Camera& camera, const std::string& label,
+                       ViewTime time) {
   if (index < 0 || index > viewCount() || index >= SSRCL_MAX_VIEWS)
     throw Error(ErrorCode::InvalidArgument, "pipeline: view index " + std::to_string(index) + " out of range (0.." +
                                                 std::to_string(std::min(viewCount(), SSRCL_MAX_VIEWS - 1)) + ")");
@@ -283,15 +284,14 @@ void Pipeline::setView(int index, const GBuffer& gbuffer, const Camera& camera, 
   if (!gbuffer.roughness.empty()) source.inputs.set("roughness", gbuffer.roughness);
   source.camera = camera;
   source.label = label;
+  source.otherTime = time == ViewTime::Other;
   if (index == viewCount()) impl_->views.push_back(std::move(source));
   else impl_->views[index] = std::move(source);
-  impl_->viewsPrepared = false;
   impl_->committed = false;
 }
 
 void Pipeline::clearViews() {
   impl_->views.clear();
-  impl_->viewsPrepared = false;
   impl_->committed = false;
 }
 

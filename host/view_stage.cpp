@@ -42,7 +42,7 @@ void ViewStage::configure(Device::Impl& device, const TraceSettings& s, size_t v
     unit->setup.configure(device);
     unit->thickness.configure(device, s);
     unit->hzb.configure(device);
-    unit->colors.configure(device, s);
+    unit->colors.configure(device, s, false);
     unit->kernel = cl::Kernel(program_, "trace_views");
   }
 }
@@ -66,6 +66,7 @@ void ViewStage::bind(cl::CommandQueue& q, const Camera& main, const std::vector<
                      const SetupStage& setup, const TraceStage& trace) {
   const CameraConstants mainConstants(main);
   std::copy(std::begin(mainConstants.invProj), std::end(mainConstants.invProj), invProj_);
+  std::copy(std::begin(mainConstants.proj), std::end(mainConstants.proj), proj_);
   width_ = main.width;
   height_ = main.height;
   std::vector<ViewCamera> cameras(units_.size());
@@ -82,6 +83,7 @@ void ViewStage::bind(cl::CommandQueue& q, const Camera& main, const std::vector<
     cameras[k].height = c.height;
     cameras[k].near_plane = constants.nearPlane;
     cameras[k].far_plane = constants.farPlane;
+    cameras[k].other_time = views[k].otherTime;
 
     u.setup.bind(u.hzb.hzb, u.colors.pyramid);
     u.thickness.bind(u.setup);
@@ -98,6 +100,7 @@ void ViewStage::bind(cl::CommandQueue& q, const Camera& main, const std::vector<
 void ViewStage::prepare(cl::CommandQueue& q, std::vector<ViewSource>& views, const TraceSettings& s,
                         StageEvents& events) {
   for (size_t k = 0; k < units_.size(); ++k) {
+    if (views[k].prepared) continue;
     Unit& u = *units_[k];
     PipelineInputs& in = views[k].inputs;
     const TraceSettings vs = viewSettings(views[k], s);
@@ -108,6 +111,7 @@ void ViewStage::prepare(cl::CommandQueue& q, std::vector<ViewSource>& views, con
     u.hzb.enqueue(q, events);
     u.colors.reduce(q, events);
     u.thickness.enqueue(q, vs, events);
+    views[k].prepared = true;
   }
 }
 
@@ -131,6 +135,7 @@ void ViewStage::limitRadiance(const float* color, size_t pixels, int channels) {
 void ViewStage::trace(cl::CommandQueue& q, const TraceParams& batch, StageEvents& events) {
   ViewTraceParams p{};
   std::copy(std::begin(invProj_), std::end(invProj_), p.inv_proj);
+  std::copy(std::begin(proj_), std::end(proj_), p.proj);
   p.width = width_;
   p.height = height_;
   p.listed = batch.listed;

@@ -17,7 +17,9 @@ using shared::ViewTraceParams;
 struct ViewSource {
   PipelineInputs inputs;  // color, depth, normal, roughness (as the main frame's)
   Camera camera;
-  std::string label;  // names the view in messages ("view 1" when empty)
+  std::string label;       // names the view in messages ("view 1" when empty)
+  bool otherTime = false;  // rendered at another moment: hits the frame sees moved are not taken
+  bool prepared = false;   // its device images hold its setup, HZB, colours and thickness
 };
 
 class ViewStage {
@@ -30,7 +32,7 @@ class ViewStage {
   void plan(DeviceBuffers& buffers, const std::vector<ViewSource>& views);
   void bind(cl::CommandQueue& q, const Camera& main, const std::vector<ViewSource>& views, const SetupStage& setup,
             const TraceStage& trace);
-  // Each view's setup, HZB, colour pyramid and thickness.
+  // The setup, HZB, colour pyramid and thickness of each view not yet prepared.
   void prepare(cl::CommandQueue& q, std::vector<ViewSource>& views, const TraceSettings& s, StageEvents& events);
   // The unresolved rays of one trace batch, in their views ("views" events).
   void trace(cl::CommandQueue& q, const TraceParams& batch, StageEvents& events);
@@ -54,7 +56,7 @@ class ViewStage {
   cl::Program program_;
   cl::Buffer cameras_;  // ViewCamera per view
   std::vector<int> colorChannels_;
-  float invProj_[16] = {};
+  float invProj_[16] = {}, proj_[16] = {};  // the main camera's
   float radianceLimit_ = 0.0f;
   int width_ = 0, height_ = 0;
 };

@@ -120,10 +120,13 @@ typedef struct {
   float proj[16];
   ssrcl_int width, height;
   float near_plane, far_plane;
+  // Rendered at another moment (a neighbouring frame): only what has not moved since is a hit.
+  ssrcl_int other_time;
 } ViewCamera;
 
 typedef struct {
   float inv_proj[16];      // the main camera's
+  float proj[16];          // the main camera's
   ssrcl_int width, height; // the main frame's
   ssrcl_int listed, batch_size, first_sample;  // as the trace's batch
   ssrcl_int view;          // the view this pass traces in

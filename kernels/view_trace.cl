@@ -57,6 +57,25 @@ inline bool clip_to_frustum(float16 proj, float near_plane, float far_plane, flo
   return hi > lo && isfinite(lo) && isfinite(hi);
 }
 
+// A view rendered at another moment (a neighbouring frame) shows the scene as it was then. Its hit
+// texel counts only where the frame cannot tell that it moved: its surface point, reprojected
+// into the frame, lies outside it or behind what the frame shows there (hidden from the frame).
+// In front of the nearest surface the frame shows around that pixel (3x3: a silhouette a pixel
+// off is no disagreement) by more than 2% of its depth, the frame would see it, and what it shows
+// instead says the hit has moved (or left) since.
+inline bool moved_since(float16 main_proj, int2 size, __global const float4* main_positions, float3 hit) {
+  float4 h = mat_mul(main_proj, (float4)(hit, 1.0f));
+  if (!(h.w > 0.0f) || fabs(h.x) >= h.w || fabs(h.y) >= h.w) return false;
+  int2 c = clamp(convert_int2(ndc_to_pixel(h.xy / h.w, size)), (int2)(0, 0), size - 1);
+  float nearest = INFINITY;
+  for (int dy = -1; dy <= 1; ++dy)
+    for (int dx = -1; dx <= 1; ++dx) {
+      int2 q = clamp(c + (int2)(dx, dy), (int2)(0, 0), size - 1);
+      nearest = fmin(nearest, main_positions[q.y * size.x + q.x].w);
+    }
+  return -hit.z < 0.98f * nearest;
+}
+
 __kernel void trace_views(ViewTraceParams params, __global const ViewCamera* views,
                           __global const float4* main_positions, __global const float4* main_normals,
                           __global const int* ray_list, __global const int* pixel_rays,
@@ -115,6 +134,11 @@ __kernel void trace_views(ViewTraceParams params, __global const ViewCamera* vie
   cell = clamp(cell, (int2)(0, 0), size - 1);
   float3 hit_k = ray_point(&ray, t);
   float3 hit_main = mat_mul(vload16(0, cam.to_main), (float4)(hit_k, 1.0f)).xyz;
+  // The texel hit: its surface point, not the ray's (which may pass within its thickness).
+  if (cam.other_time) {
+    float3 texel = mat_mul(vload16(0, cam.to_main), (float4)(positions[cell.y * size.x + cell.x].xyz, 1.0f)).xyz;
+    if (moved_since(vload16(0, params.proj), main_size, main_positions, texel)) return;
+  }
   float distance = length(hit_main - p);
   float confidence = edge_confidence(ray_screen(&ray, t), size, params.edge_fade);
   // Taken when the view sees more of the hit than the frame did; or, where the frame's hit is in

@@ -44,9 +44,10 @@ class PythonPipeline {
   }
 
   // `gbuffer` is kept alive here: the C++ pipeline reads it at execute().
-  void setView(int index, std::shared_ptr<const GBuffer> gbuffer, const Camera& camera, const std::string& label) {
-    pipeline_->setView(index, *gbuffer, camera, label);  // validates the index first
-    const View view{std::move(gbuffer), camera, label};
+  void setView(int index, std::shared_ptr<const GBuffer> gbuffer, const Camera& camera, const std::string& label,
+               ViewTime time) {
+    pipeline_->setView(index, *gbuffer, camera, label, time);  // validates the index first
+    const View view{std::move(gbuffer), camera, label, time};
     if (index == static_cast<int>(views_.size())) views_.push_back(view);
     else views_[index] = view;
     committed_ = false;
@@ -101,7 +102,7 @@ class PythonPipeline {
     if (camera_) fresh->setCamera(*camera_);
     if (environment_) fresh->setEnvironment(*environment_);
     for (size_t k = 0; k < views_.size(); ++k)
-      fresh->setView(static_cast<int>(k), *views_[k].gbuffer, views_[k].camera, views_[k].label);
+      fresh->setView(static_cast<int>(k), *views_[k].gbuffer, views_[k].camera, views_[k].label, views_[k].time);
     pipeline_ = std::move(fresh);
     return true;
   }
@@ -119,6 +120,7 @@ class PythonPipeline {
     std::shared_ptr<const GBuffer> gbuffer;
     Camera camera;
     std::string label;
+    ViewTime time;
   };
   std::vector<View> views_;
   TraceSettings settings_;
@@ -161,26 +163,30 @@ void bindPipeline(py::module_& m) {
           py::arg("frame"), "Every pass of a loadFrame() result and its camera, as `ssrcl trace` sets them.")
       .def(
           "setView",
-          [](PythonPipeline& p, int index, std::shared_ptr<cli::Frame> frame, const std::string& label) {
-            p.setView(index, std::shared_ptr<const GBuffer>(frame, &frame->gbuffer), frame->camera, label);
+          [](PythonPipeline& p, int index, std::shared_ptr<cli::Frame> frame, const std::string& label,
+             bool otherTime) {
+            p.setView(index, std::shared_ptr<const GBuffer>(frame, &frame->gbuffer), frame->camera, label,
+                      otherTime ? ViewTime::Other : ViewTime::Same);
           },
-          py::arg("index"), py::arg("frame"), py::arg("label") = "",
+          py::arg("index"), py::arg("frame"), py::arg("label") = "", py::arg("other_time") = false,
           "Auxiliary view `index` (0, 1, ...; viewCount() appends) from a loadFrame() result and its camera: rays "
           "the frame leaves unresolved continue in it (Pipeline::setView in include/ssrcl/pipeline.hpp). `label` "
-          "names it in messages.")
+          "names it in messages; other_time=True: a neighbouring frame, whose hits the frame shows have moved are "
+          "not taken (ViewTime::Other).")
       .def(
           "setView",
           [](PythonPipeline& p, int index, const Camera& camera, const FloatArray& color, const FloatArray& depth,
-             const FloatArray& normal, const std::optional<FloatArray>& roughness, const std::string& label) {
+             const FloatArray& normal, const std::optional<FloatArray>& roughness, const std::string& label,
+             bool otherTime) {
             auto g = std::make_shared<GBuffer>();
             g->color = imageFromArray(color, "view color");
             g->depth = imageFromArray(depth, "view depth");
             g->normal = imageFromArray(normal, "view normal");
             if (roughness) g->roughness = imageFromArray(*roughness, "view roughness");
-            p.setView(index, g, camera, label);
+            p.setView(index, g, camera, label, otherTime ? ViewTime::Other : ViewTime::Same);
           },
           py::arg("index"), py::arg("camera"), py::arg("color"), py::arg("depth"), py::arg("normal"),
-          py::arg("roughness") = py::none(), py::arg("label") = "",
+          py::arg("roughness") = py::none(), py::arg("label") = "", py::arg("other_time") = false,
           "Auxiliary view `index` from arrays as setImage takes them (colour, planar depth, world normals; no "
           "roughness: no glossy pixels), copied, with its own camera and size.")
       .def("clearViews", &PythonPipeline::clearViews)

@@ -123,6 +123,7 @@ TEST_F(Cli, ExplicitCameraAndDevice) {
                           shellQuote(out)));
   ASSERT_EQ(r.exitCode, 0) << r.output;
   EXPECT_NE(r.output.find("trace"), std::string::npos) << r.output;  // per-stage times printed
+  EXPECT_EQ(r.output.find("views"), std::string::npos) << r.output;  // no views, no views stage
   EXPECT_TRUE(std::filesystem::exists(out));
 }
 

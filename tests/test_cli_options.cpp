@@ -225,6 +225,7 @@ TEST(InputOptionReachesThePass, MaterialFileAndBaseColorChannels) {
 const std::map<std::string, std::string> kCheckedElsewhere = {
     {"--view", "test_cli.cpp"},
     {"--view-camera", "test_cli.cpp"},
+    {"--neighbour", "test_multiview.cpp"},
     {"--camera", "test_cli.cpp"},
     {"--device", "test_cli.cpp"},
     {"--stats", "test_cli.cpp"},

@@ -27,6 +27,7 @@ struct BatchOptions {
   std::string device, shard = "0/1", report;
   GBufferInputOptions in;
   std::vector<std::string> views, viewCameras;  // static views, shared by every frame
+  int neighbours = 0;                           // frames f-K..f+K as views of frame f
   SettingsOptions settings;
   OutputOptions out;
   // Readers and as many writers; a quarter of the cores leaves the rest to a CPU device.
@@ -44,11 +45,12 @@ int exitCodeOf(const BatchOutcome& b) {
 int runBatch(const BatchOptions& o) {
   const Shard shard = parseShard(o.shard);
   std::vector<FrameJob> jobs;
-  {
-    std::vector<FrameJob> all = planBatch(o.request);
-    for (size_t i = 0; i < all.size(); ++i)
-      if (shard.owns(i)) jobs.push_back(std::move(all[i]));
-  }
+  const std::vector<FrameJob> all = planBatch(o.request);
+  for (size_t i = 0; i < all.size(); ++i)
+    if (shard.owns(i)) jobs.push_back(all[i]);
+  std::unique_ptr<NeighbourWindow> neighbours;
+  if (o.neighbours != 0)
+    neighbours = std::make_unique<NeighbourWindow>(o.in, all, o.neighbours, static_cast<int>(o.views.size()));
   std::vector<FrameOutcome> outcomes(jobs.size());
   std::vector<const FrameJob*> toRun;
   for (size_t i = 0; i < jobs.size(); ++i) {
@@ -94,6 +96,7 @@ int runBatch(const BatchOptions& o) {
     BatchRunner runner(device, o.in, record, o.out, o.failFast, o.ioThreads);
     runner.setEnvironment(environment);
     runner.setViews(views);
+    runner.setNeighbours(std::move(neighbours));
     ProgressLine progress(toRun.size(), !o.quiet);
     size_t finished = 0, failed = 0;
     run = runner.run(
@@ -138,6 +141,11 @@ Action addBatchCommand(CLI::App& app) {
   addViewOptions(*cmd, o->views, o->viewCameras,
                  "Auxiliary view shared by every frame: a G-buffer EXR of the same (static) scene from another "
                  "camera (repeatable), read and uploaded once; as `ssrcl trace --view`");
+  cmd->add_option("--neighbours", o->neighbours,
+                  "K: frames f-K..f+K of the sequence (2K frames nearest f at its ends) are views of frame f, "
+                  "each with its own camera, for static geometry: hits frame f shows have moved are not taken; "
+                  "each frame is read and prepared once while in the window")
+      ->capture_default_str();
   cmd->add_option("--shard", o->shard,
                   "K/N: process only share K (0-based) of N, e.g. $SLURM_ARRAY_TASK_ID/$SLURM_ARRAY_TASK_COUNT")
       ->capture_default_str();

@@ -26,6 +26,7 @@ struct FrameInFlight {
   FrameOutcome outcome;
   Frame frame;
   Image reflection, distance, view;  // view: with auxiliary views only
+  std::vector<std::string> views;    // the files of its views, in view order
   bool deviceUnusable = false;  // no later frame can succeed either: stop rather than fail each
 };
 
@@ -122,7 +123,9 @@ BatchRun BatchRunner::run(const std::vector<FrameJob>& jobs, std::vector<FrameOu
           if (!parent.empty()) std::filesystem::create_directories(parent);
           const FrameJob& job = jobs[f->index];
           toOutputForm(input_.form, f->reflection, f->frame.gbuffer, f->frame.camera, input_.roughness);
-          ReflectionExrOptions written = writerOptions(output_, record_, job.input, input_.sourceFor(job.input), f->frame);
+          OutputRecord record = record_;
+          record.views = f->views;
+          ReflectionExrOptions written = writerOptions(output_, record, job.input, input_.sourceFor(job.input), f->frame);
           if (!f->view.empty()) written.view = &f->view;
           writeReflectionExr(job.output, f->reflection, f->distance, written);
         });
@@ -138,6 +141,8 @@ BatchRun BatchRunner::run(const std::vector<FrameJob>& jobs, std::vector<FrameOu
       continue;
     }
     const bool computedOk = attempt(*f, f->outcome.computeSeconds, kExitUsage, [&] {
+      const std::string& input = jobs[f->index].input;
+      if (neighbours_) neighbours_->moveTo(pipeline_, input);
       setFrame(pipeline_, f->frame);
       pipeline_.commit();
       pipeline_.execute();
@@ -145,6 +150,15 @@ BatchRun BatchRunner::run(const std::vector<FrameJob>& jobs, std::vector<FrameOu
       f->reflection = pipeline_.output("reflection");  // copies: the pipeline reuses its outputs
       f->distance = pipeline_.output("distance");
       f->view = pipeline_.output("view");  // empty without views
+      f->views = staticViews_;
+      if (neighbours_) {
+        const std::vector<std::string> neighbours = neighbours_->files();
+        f->views.insert(f->views.end(), neighbours.begin(), neighbours.end());
+        Frame traced;  // its next frames' neighbour
+        traced.gbuffer = std::move(f->frame.gbuffer);
+        traced.camera = f->frame.camera;
+        neighbours_->keep(input, std::move(traced));
+      }
       f->frame.gbuffer = GBuffer{};
     });
     if (!computedOk)

@@ -5,6 +5,7 @@
 
 #include "batch_plan.hpp"
 #include "gbuffer_input.hpp"
+#include "neighbour_window.hpp"
 #include "output_options.hpp"
 #include "ssrcl/device.hpp"
 #include "ssrcl/pipeline.hpp"
@@ -44,7 +45,12 @@ class BatchRunner {
   // Every frame's misses take this environment (see Pipeline::setEnvironment); it must outlive run().
   void setEnvironment(const EnvironmentMap& environment) { pipeline_.setEnvironment(environment); }
   // Auxiliary views of every frame (see Pipeline::setView), uploaded once; they must outlive run().
-  void setViews(const Views& views) { cli::setViews(pipeline_, views); }
+  void setViews(const Views& views) {
+    cli::setViews(pipeline_, views);
+    staticViews_ = views.files;
+  }
+  // Each frame's neighbours in the sequence as views too (after the static ones), read as needed.
+  void setNeighbours(std::unique_ptr<NeighbourWindow> neighbours) { neighbours_ = std::move(neighbours); }
 
   // Processes, in order, the jobs whose outcome is NotRun and records their outcomes. Starts no
   // new frame once stopRequested() is true; the frame on the device is finished and written.
@@ -54,6 +60,8 @@ class BatchRunner {
 
  private:
   Pipeline pipeline_;
+  std::vector<std::string> staticViews_;
+  std::unique_ptr<NeighbourWindow> neighbours_;
   GBufferInputOptions input_;
   OutputRecord record_;
   OutputOptions output_;

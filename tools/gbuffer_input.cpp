@@ -143,17 +143,22 @@ void setFrame(Pipeline& pipeline, const Frame& frame) {
   pipeline.setCamera(frame.camera);
 }
 
+GBufferInputOptions viewInputOptions(const GBufferInputOptions& o) {
+  GBufferInputOptions viewOptions = o;  // a view has its own file for every pass, and no material passes
+  GBufferSource& s = viewOptions.source;
+  s.colorFile = s.depthFile = s.normalFile = s.roughnessFile = s.positionFile = s.materialFile = "";
+  s.glossyPasses = false;
+  viewOptions.form = OutputFormOptions{};
+  return viewOptions;
+}
+
 Views loadViews(const GBufferInputOptions& o, const std::vector<std::string>& files,
                 const std::vector<std::string>& cameras) {
   if (cameras.size() > files.size())
     throw Error(ErrorCode::InvalidArgument, "--view-camera is given " + std::to_string(cameras.size()) +
                                                 " times but --view " + std::to_string(files.size()) +
                                                 " (each --view-camera belongs to the --view in the same place)");
-  GBufferInputOptions viewOptions = o;  // a view has its own file for every pass, and no material passes
-  GBufferSource& s = viewOptions.source;
-  s.colorFile = s.depthFile = s.normalFile = s.roughnessFile = s.positionFile = s.materialFile = "";
-  s.glossyPasses = false;
-  viewOptions.form = OutputFormOptions{};
+  const GBufferInputOptions viewOptions = viewInputOptions(o);
   Views views;
   views.files = files;
   for (size_t k = 0; k < files.size(); ++k) {
@@ -178,8 +183,12 @@ void addViewOptions(CLI::App& cmd, std::vector<std::string>& files, std::vector<
 
 void setViews(Pipeline& pipeline, const Views& views) {
   pipeline.clearViews();
+  addViews(pipeline, views, ViewTime::Same);
+}
+
+void addViews(Pipeline& pipeline, const Views& views, ViewTime time) {
   for (size_t k = 0; k < views.frames.size(); ++k)
-    pipeline.setView(static_cast<int>(k), views.frames[k].gbuffer, views.frames[k].camera, views.files[k]);
+    pipeline.setView(pipeline.viewCount(), views.frames[k].gbuffer, views.frames[k].camera, views.files[k], time);
 }
 
 }  // namespace ssrcl::cli

@@ -58,6 +58,8 @@ void setFrame(Pipeline& pipeline, const Frame& frame);
 // Auxiliary views (--view): G-buffers of the same scene from other cameras, read with the input's
 // channel options (not its separate pass files or material passes). Each view's camera is
 // cameras[k] when given, else its sidecar, else its EXR header. Errors name the view's file.
+// The input's options as views are read with: no separate pass files, glossy or material passes.
+GBufferInputOptions viewInputOptions(const GBufferInputOptions& o);
 struct Views {
   std::vector<std::string> files;
   std::vector<Frame> frames;
@@ -69,5 +71,7 @@ void addViewOptions(CLI::App& cmd, std::vector<std::string>& files, std::vector<
                     const std::string& viewHelp);
 // Gives the pipeline the views, labelled by their files; `views` must stay alive until execute().
 void setViews(Pipeline& pipeline, const Views& views);
+// Adds them after the pipeline's views, rendered at `time` (ViewTime::Other: neighbouring frames).
+void addViews(Pipeline& pipeline, const Views& views, ViewTime time);
 
 }  // namespace ssrcl::cli

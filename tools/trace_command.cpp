@@ -19,6 +19,7 @@ struct TraceOptions {
   std::string input, output, camera, device;
   GBufferInputOptions in;
   std::vector<std::string> views, viewCameras;
+  std::vector<std::string> neighbours;  // views rendered at other moments (ViewTime::Other)
   SettingsOptions settings;
   OutputOptions out;
   bool stats = false;
@@ -42,11 +43,13 @@ int runTrace(TraceOptions& o) {
   const Frame frame = loadFrame(o.in, o.input, cameraPath, o.camera.empty());
   const Camera& camera = frame.camera;
   const Views views = loadViews(o.in, o.views, o.viewCameras);
+  const Views neighbours = loadViews(o.in, o.neighbours, {});
 
   Device device = openDevice(o.device);
   Pipeline pipeline(device);
   setFrame(pipeline, frame);
   setViews(pipeline, views);
+  addViews(pipeline, neighbours, ViewTime::Other);
   pipeline.setEnvironment(environment);
   pipeline.settings() = o.in.applyTo(o.settings.resolve());
   pipeline.commit();
@@ -55,10 +58,11 @@ int runTrace(TraceOptions& o) {
   Image reflection = pipeline.output("reflection");
   toOutputForm(o.in.form, reflection, frame.gbuffer, camera, o.in.roughness);
 
-  const OutputRecord record{o.settings.quality, pipeline.settings(), device.info().name, o.in.form.form,
-                            o.settings.environment, o.views};
+  OutputRecord record{o.settings.quality, pipeline.settings(), device.info().name, o.in.form.form,
+                      o.settings.environment, o.views};
+  record.views.insert(record.views.end(), o.neighbours.begin(), o.neighbours.end());
   ReflectionExrOptions written = writerOptions(o.out, record, mainFile, o.in.sourceFor(o.input), frame);
-  if (!o.views.empty()) written.view = &pipeline.output("view");
+  if (pipeline.viewCount() > 0) written.view = &pipeline.output("view");
   try {
     writeReflectionExr(o.output, reflection, pipeline.output("distance"), written);
   } catch (const Error& e) {
@@ -72,8 +76,9 @@ int runTrace(TraceOptions& o) {
               << "pixels traced: " << t.tracedPixels << " of " << size_t(camera.width) * camera.height
               << ", rays: " << t.tracedRays << "\n";
     for (const auto& [stage, ms] : t.ms)
-      std::cerr << "  " << std::left << std::setw(9) << stage << std::right << std::fixed << std::setprecision(3)
-                << std::setw(10) << ms << " ms\n";
+      if (stage != "views" || pipeline.viewCount() > 0)  // no views, no such stage (not one of 0 ms)
+        std::cerr << "  " << std::left << std::setw(9) << stage << std::right << std::fixed << std::setprecision(3)
+                  << std::setw(10) << ms << " ms\n";
   }
   return kExitOk;
 }
@@ -91,6 +96,11 @@ Action addTraceCommand(CLI::App& app) {
   addViewOptions(*cmd, o->views, o->viewCameras,
                  "Auxiliary view: a G-buffer EXR of the same scene from another camera (repeatable); rays that "
                  "leave the frame or pass behind a surface continue in the views");
+  cmd->add_option("--neighbour", o->neighbours,
+                  "A view rendered at another moment: a neighbouring frame of the shot (its sidecar or header "
+                  "camera), for static geometry; its hits this frame shows have moved are not taken (repeatable; "
+                  "what `ssrcl batch` takes as a frame's neighbours)")
+      ->allow_extra_args(false);
   addChannelOptions(*cmd, o->in);
   addPassFileOptions(*cmd, o->in);
   addSettingsOptions(*cmd, o->settings);

@@ -138,6 +138,15 @@ struct StageTimes {
   std::vector<long long> iterationHistogram;
 };
 
+// When an auxiliary view (Pipeline::setView) was rendered: at the frame's moment (Same: a
+// wide or reverse render of the same frame, or of a static scene), or at another one (Other: a
+// neighbouring frame of the shot, for static geometry). A hit found in an Other view is not taken
+// where the frame shows that it has moved: reprojected into the frame, it lies in front of
+// every surface the frame shows within a pixel of there (by more than 2% of their depth), so the
+// frame would see it if it were still there. Hits outside the frame or hidden behind its surfaces
+// are taken (nothing there tells); Same views take every hit.
+enum class ViewTime { Same, Other };
+
 // The SSR pipeline, shaped like an OIDN filter:
 //   Pipeline p(device);
 //   p.setImage("color", img); p.setImage("depth", d); p.setImage("normal", n); p.setImage("roughness", r);
@@ -162,6 +171,7 @@ struct StageTimes {
 // replanned) by execute().
 class Pipeline {
  public:
+  static constexpr int kMaxViews = 16;  // auxiliary views (setView)
   explicit Pipeline(const Device& device);
   ~Pipeline();
   Pipeline(Pipeline&&) noexcept;
@@ -177,17 +187,20 @@ class Pipeline {
   // All four passes of a loaded G-buffer (roughness only when it has one), same lifetime rule.
   void setGBuffer(const GBuffer& gbuffer);
   void setCamera(const Camera& camera);
-  // Auxiliary view `index` (0, 1, ...; index viewCount() adds one, at most 16): another G-buffer
+  // Auxiliary view `index` (0, 1, ...; index viewCount() adds one, at most kMaxViews): another G-buffer
   // of the same scene (color, planar depth and world normals as above, roughness optional: none
   // means no glossy pixels) seen by its own camera, of any size. Rays the frame leaves unresolved
   // (misses, hits faded at its edge, hits found after passing behind a surface the frame shows)
   // continue in up to 3 views, those that hold the ray's origin and that it heads into first,
   // traced the same way against each view's own depth; the hit's colour is the view's. A is then
   // the fraction of the lobe found in any view, and output("view") says where (see there).
-  // `label` names the view in messages (e.g. its file). The G-buffer must stay alive until execute(),
-  // which reads it once: later executes (other frames, through commits that keep the settings and
-  // sizes) reuse what the view uploaded; setView again after changing its pixels.
-  void setView(int index, const GBuffer& gbuffer, const Camera& camera, const std::string& label = {});
+  // `label` names the view in messages (e.g. its file); `time` says when it was rendered (ViewTime).
+  // The G-buffer must stay alive until execute(), which reads it once: later executes (other
+  // frames, through commits that keep the settings and sizes) reuse what the view uploaded;
+  // setView again after changing its pixels. Replacing view k leaves the others' device images
+  // as they are: a window of neighbouring frames slides by replacing the views that left it.
+  void setView(int index, const GBuffer& gbuffer, const Camera& camera, const std::string& label = {},
+               ViewTime time = ViewTime::Same);
   void clearViews();
   int viewCount() const;
   TraceSettings& settings();

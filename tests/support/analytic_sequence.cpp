@@ -30,7 +30,8 @@ Scene sequenceScene(const AnalyticSequence& s) {
 Camera sequenceCamera(const AnalyticSequence& s, int index) {
   ViewParams view = makeScene(s.scene).view;
   const glm::dmat4 orbit = glm::rotate(glm::dmat4(1.0), glm::radians(index * s.degreesPerFrame), glm::dvec3(0, 1, 0));
-  view.eye = view.target + glm::dvec3(orbit * glm::dvec4(view.eye - view.target, 0.0));
+  const glm::dvec3 away = view.eye - view.target;
+  view.eye = view.target + glm::dvec3(orbit * glm::dvec4(away + glm::normalize(away) * (index * s.dollyPerFrame), 0.0));
   if (s.fovYDegrees > 0) view.fovYDegrees = s.fovYDegrees;
   return makeCamera(view, s.width, s.height);
 }

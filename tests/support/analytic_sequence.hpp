@@ -7,7 +7,8 @@ namespace ssrcl::test {
 
 // A rendered shot made up: frames <directory>/<prefix>.<frame, 4 digits>.exr (Blender multilayer
 // naming, half colour, float data passes) with <prefix>.<frame>.camera.json sidecars, of an
-// analytic scene seen by a camera orbiting it by `degreesPerFrame`.
+// analytic scene seen by a camera orbiting it by `degreesPerFrame` and moving back from its target
+// by `dollyPerFrame`.
 struct AnalyticSequence {
   std::string directory;
   std::string prefix = "shot";
@@ -16,6 +17,7 @@ struct AnalyticSequence {
   int frameCount = 8;
   int width = 64, height = 36;
   double degreesPerFrame = 2.0;
+  double dollyPerFrame = 0.0;  // world units along the line from the target to the eye
   double roughness = -1.0;  // >= 0: every surface this rough (the scenes are mirrors)
   double fovYDegrees = 0.0; // > 0: the camera's vertical field of view instead of the scene's
 };

@@ -1,0 +1,51 @@
+#pragma once
+// `ssrcl batch --neighbours K`: the frames around each frame of a sequence as its auxiliary views
+// (ViewTime::Other: static geometry only), kept as a sliding window. Moving from one frame to the
+// next replaces only the views that left the window, so each frame is read, uploaded and prepared
+// (setup, thickness, HZB, colours) once while it stays inside it.
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "batch_plan.hpp"
+#include "gbuffer_input.hpp"
+#include "ssrcl/pipeline.hpp"
+
+namespace ssrcl::cli {
+
+class NeighbourWindow {
+ public:
+  // `sequence`: every frame the batch planned, in order (all shards, frames skipped or not).
+  // Neighbours take the pipeline's views from `firstView` on (after the static --view ones).
+  // Throws Error(InvalidArgument) when K < 0, when the sequence has fewer than 2K + 1 frames, or
+  // when firstView + 2K views exceed the pipeline's maximum.
+  NeighbourWindow(const GBufferInputOptions& input, std::vector<FrameJob> sequence, int k, int firstView);
+
+  // The first and last sequence index of frame `index`'s window: index - K .. index + K, shifted
+  // inward at the sequence's ends so that every frame has 2K neighbours.
+  static std::pair<size_t, size_t> span(size_t index, size_t count, int k);
+
+  // Makes the pipeline's neighbour views those of the frame read from `input`: frames that left
+  // the window give their view to frames that entered it (read with the frames' channel options
+  // and camera rules); the rest stay as they are. Errors name the neighbour's file.
+  void moveTo(Pipeline& pipeline, const std::string& input);
+  // Keeps the G-buffer of the frame read from `input`, just traced, for its successors' windows.
+  void keep(const std::string& input, Frame&& frame);
+  // The neighbours' files in view order (for the output's record of its views).
+  std::vector<std::string> files() const;
+
+ private:
+  size_t indexOf(const std::string& input) const;
+
+  GBufferInputOptions input_;  // as views are read
+  std::vector<FrameJob> sequence_;
+  std::map<std::string, size_t> byInput_;
+  int k_, firstView_;
+  std::map<size_t, std::shared_ptr<const Frame>> loaded_;  // frames of the current window
+  std::vector<std::optional<size_t>> slots_;               // the sequence frame each view shows
+};
+
+}  // namespace ssrcl::cli
