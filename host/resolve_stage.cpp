@@ -6,7 +6,8 @@ cl::NDRange listedTiles(int tiles) { return cl::NDRange(size_t(tiles) * SSRCL_TI
 
 void ResolveStage::configure(Device::Impl& device, const TraceSettings& s, int views) {
   views_ = views;
-  std::vector<std::string> defines = {roughnessMappingDefine(s.roughnessMapping)};
+  std::vector<std::string> defines = {roughnessMappingDefine(s.roughnessMapping),
+                                      "SSRCL_RESOLVE_RAY_STRIDE=" + std::to_string(resolveRayStride(s))};
   if (views > 0) defines.push_back("SSRCL_VIEWS=1");
   const cl::Program& program = device.program({"ssrcl_shared.h", "common.cl", "ggx.cl", "resolve.cl"}, defines);
   accumulate_ = cl::Kernel(program, "resolve_accumulate");

@@ -77,4 +77,12 @@ void toRowMajor(const glm::dmat4& m, float out[16]) {
     for (int c = 0; c < 4; ++c) out[r * 4 + c] = static_cast<float>(m[c][r]);  // glm is column-major
 }
 
+int resolveRayStride(const TraceSettings& s) { return s.denoise ? 4 : 1; }
+
+int resolvedRays(const TraceSettings& s) {
+  const int neighbours = (2 * s.reuseRadius + 1) * (2 * s.reuseRadius + 1) - 1;
+  const int stride = resolveRayStride(s);
+  return s.samplesPerPixel + neighbours * ((s.samplesPerPixel + stride - 1) / stride);
+}
+
 }  // namespace ssrcl::detail

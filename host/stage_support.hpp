@@ -79,5 +79,13 @@ size_t roundUp(size_t n, size_t multiple);
 void toRowMajor(const glm::dmat4& m, float out[16]);
 // The SSRCL_ROUGHNESS_MAPPING define of programs that map roughness to GGX alpha.
 std::string roughnessMappingDefine(RoughnessMapping m);
+// Of each similar neighbour's rays the resolve takes one share in this many (a pixel's own rays
+// all), neighbouring pixels different shares: 4 when the edge-aware filter follows, whose average
+// over neighbouring pixels then meets more distinct rays than the reuse gave each (corpus, high:
+// +0.2 dB, p99 error -0.25% of the peak, 112 taps instead of 400; no faster on PoCL); 1 without
+// (medium lost 0.85 dB, docs/BENCHMARKS.md).
+int resolveRayStride(const TraceSettings& s);
+// Rays a glossy pixel's resolve combines at most (its own and its neighbours' taps).
+int resolvedRays(const TraceSettings& s);
 
 }  // namespace ssrcl::detail

@@ -67,8 +67,7 @@ TraceParams TraceStage::params(const FrameShape& frame, const CameraConstants& c
   p.mirror_roughness = s.mirrorRoughness;
   // Each ray's cone covers its share of the lobe among all N rays the resolve combines: a
   // reflected GGX lobe spans about 2 alpha, so a share is a cone of half-angle 2 alpha / sqrt(N).
-  const int reused = s.samplesPerPixel * (2 * s.reuseRadius + 1) * (2 * s.reuseRadius + 1);
-  p.cone_scale = s.prefilter ? 2.0f / std::sqrt(float(reused)) : 0.0f;
+  p.cone_scale = s.prefilter ? 2.0f / std::sqrt(float(resolvedRays(s))) : 0.0f;
   p.linear_step = s.linearStepPixels;
   p.max_iterations = maxIterations(s);
   p.edge_fade = s.edgeFade;

@@ -6,9 +6,11 @@
 #ifndef SSRCL_VIEWS
 #define SSRCL_VIEWS 0
 #endif
+// SSRCL_RESOLVE_RAY_STRIDE (host/stage_support.hpp resolveRayStride): of a similar neighbour's
+// rays one share in this many (1: all), the pixel's own rays all.
 
 // Glossy pixels use the ratio estimator of Stachowiak ("Stochastic Screen-Space Reflections",
-// 2015): every ray of a similar neighbour is reused, weighted by this pixel's BRDF * cosine over
+// 2015): the rays of similar neighbours are reused, weighted by this pixel's BRDF * cosine over
 // the pdf the ray was drawn with, and
 //   rgb = sum(w * c * L) / sum(w),  A = sum(w * c) / sum(w),  distance = sum(w * c * d) / sum(w * c)
 // with c the hit's confidence (0 for a miss) - the lobe-weighted integrals TraceSettings
@@ -86,7 +88,13 @@ __kernel void resolve_accumulate(ResolveParams params, __global const int* tile_
         int count = min(pixel_rays[q] - first_sample, batch_size);
         if (count <= 0 || (q != i && !similar_surface(positions[i].w, nr.xyz, positions[q].w, normals[q].xyz)))
           continue;
-        for (int s = 0; s < count; ++s) {
+        // Own rays all; of a neighbour's, one of `parts` consecutive shares (consecutive rays
+        // share cache lines), picked by a phase that steps by one to the next pixel in x and by
+        // two in y, so neighbouring pixels take different shares of q and one pixel's neighbours
+        // cover the shares evenly (a rank-1 lattice).
+        int parts = q == i ? 1 : min(SSRCL_RESOLVE_RAY_STRIDE, count);
+        int part = (x + 2 * y + 3 * qx + qy) % parts;
+        for (int s = part * count / parts; s < (part + 1) * count / parts; ++s) {
           size_t r = (size_t)q * batch_size + s;
           float4 rad = ray_radiance[r];
           if (!(rad.w > 0.0f)) continue;  // a mirror ray (delta) or one never traced

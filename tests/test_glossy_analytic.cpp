@@ -546,8 +546,9 @@ TEST_P(GlossySsr, RaysFollowingRoughnessStayUnbiased) {
 // path's margins (0.004 on biases, 10% on rms: fixed seed, only float rounding of hit decisions
 // moves them on another platform).
 
-// "high" (16 rays and the edge-aware filter): the filter must cut the error against the truth
-// (not only smooth), without biasing it.
+// "high" (16 rays and the edge-aware filter; the resolve takes a quarter of each neighbour's
+// rays, host/stage_support.hpp resolveRayStride): the filter must cut the error against the truth
+// (not only smooth), without biasing it, below the unfiltered resolve of all the rays.
 TEST_P(GlossySsr, HighPresetFilterCutsTheErrorWithoutBias) {
   const GlossyCase& c = glossyCase(GetParam());
   ssrcl::TraceSettings high = ssrcl::qualityPreset("high");
@@ -558,15 +559,17 @@ TEST_P(GlossySsr, HighPresetFilterCutsTheErrorWithoutBias) {
   std::cout << "r " << c.roughness << " high: " << describe(e) << "\n   unfiltered: " << describe(raw) << "\n";
   record("high", e);
   record("high_unfiltered", raw);
-  // Measured: bias A -0.0003 (r 0.3) and -0.0022 (r 0.6), channels within 0.0020; rms A 0.0132
-  // and 0.0160; the filter takes the rms from 0.0140 and 0.0186 (x0.94, x0.86) and mean |err|
-  // from 0.0084 and 0.0107 (x0.90, x0.78). A filter that passes its input through fails the gains.
+  // Measured: bias A +0.0007 (r 0.3) and -0.0012 (r 0.6), channels within 0.0011; rms A 0.0120
+  // and 0.0142 (all rays, before: 0.0132 and 0.0160) against the unfiltered pass of all rays'
+  // 0.0140 and 0.0186 (x0.86, x0.76), mean |err| 0.0082 and 0.0086 against 0.0084 and 0.0107
+  // (x0.98, x0.80). A filter that passes its input through leaves the quarter of the taps'
+  // noise, above the unfiltered pass of all of them: it fails the rms gain.
   EXPECT_LT(std::abs(e.biasA), 0.004);
   for (int ch = 0; ch < 3; ++ch) EXPECT_LT(std::abs(e.biasChannel[ch]), 0.004) << ch;
-  EXPECT_LT(e.rmsA, 0.0176);
-  EXPECT_LT(e.rmsA, 0.98 * raw.rmsA);
-  EXPECT_LT(e.meanAbsA, 0.95 * raw.meanAbsA);
-  EXPECT_LT(e.meanAbsRgb, 0.95 * raw.meanAbsRgb);
+  EXPECT_LT(e.rmsA, 0.0158);
+  EXPECT_LT(e.rmsA, 0.9 * raw.rmsA);
+  EXPECT_LT(e.meanAbsA, raw.meanAbsA);
+  EXPECT_LT(e.meanAbsRgb, raw.meanAbsRgb);
 }
 
 // "draft" (2 rays in one pixel of each 2x2 block, 64 iterations): the three pixels of a block
