@@ -348,26 +348,35 @@ std::vector<std::string> split(const std::string& list, char separator) {
 std::vector<std::string> splitNames(const std::string& list) { return split(list, ','); }
 std::vector<std::string> splitAlternatives(const std::string& list) { return split(list, '|'); }
 
-// Whether `file` holds every channel of a comma-separated list, unambiguously.
-bool holdsAll(const ExrFile& file, const std::string& names) {
+enum class Holds { Missing, Ambiguous, All };
+
+// Whether `file` holds every channel of a comma-separated list, and unambiguously.
+Holds holdsAll(const ExrFile& file, const std::string& names) {
+  Holds holds = Holds::All;
   for (const std::string& name : splitNames(names)) {
     try {
-      if (file.find(name).part < 0) return false;
+      if (file.find(name).part < 0) return Holds::Missing;
     } catch (const Error&) {  // in several parts: another alternative may name it exactly
-      return false;
+      holds = Holds::Ambiguous;
     }
   }
-  return true;
+  return holds;
 }
 
 // "a,b,c|d,e,f" lists alternatives in order of preference (renderer presets name each layout a
 // renderer is known to write): the first the file holds is read. A list without '|' is returned
-// as is, so a missing channel is reported by name.
+// as is, so a missing channel is reported by name; so is the first alternative held only
+// ambiguously when none is held exactly, so that its read names the parts that hold it.
 std::string chooseAlternative(const ExrFile& file, const std::string& names, const char* label) {
   if (names.find('|') == std::string::npos) return names;
   const std::vector<std::string> alternatives = splitAlternatives(names);
-  for (const std::string& alternative : alternatives)
-    if (holdsAll(file, alternative)) return alternative;
+  const std::string* ambiguous = nullptr;
+  for (const std::string& alternative : alternatives) {
+    const Holds holds = holdsAll(file, alternative);
+    if (holds == Holds::All) return alternative;
+    if (holds == Holds::Ambiguous && !ambiguous) ambiguous = &alternative;
+  }
+  if (ambiguous) return *ambiguous;
   std::string tried;
   for (const std::string& alternative : alternatives) tried += (tried.empty() ? "'" : ", '") + alternative + "'";
   throw Error(ErrorCode::InvalidInput, file.path() + ": none of the channel sets " + tried + " for the " + label +

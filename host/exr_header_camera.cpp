@@ -166,7 +166,11 @@ void readClipPlanes(const Imf::Header& header, HeaderCamera& h) {
     const std::optional<double> n = number<Imf::FloatAttribute>(header, nearName);
     const std::optional<double> f = number<Imf::FloatAttribute>(header, farName);
     if (n && f && *n > 0.0 && *f > *n) {
+      // An orthographic depth row has no infinite form (1e10 squeezes every depth into float
+      // rounding): with an infinite far plane fitClipPlanes sets both from the depth.
+      if (*f >= 1e10 && h.camera.projection[2][3] == 0.0) return;
       setClipPlanes(h.camera, *n, *f < 1e10 ? *f : INFINITY);
+      if (h.reversed) setClipPlanes(*h.reversed, *n, *f < 1e10 ? *f : INFINITY);
       h.clipPlanesKnown = true;
       h.attributes += std::string(", ") + nearName + " + " + farName;
       return;

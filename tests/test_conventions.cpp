@@ -630,10 +630,12 @@ TEST(OrthographicHeaderCamera, PassesDecideWhichWayItLooks) {
   s.w = s.camera.width;
   s.h = s.camera.height;
   const auto plain = baseChannels(s, "", "roughness") + std::vector<ExrChannel>{{"Z", s.channel(s.g.depth, 0)}};
-  const auto write = [&](const std::string& tag, const std::vector<ExrChannel>& channels, Projected layout) {
+  const auto write = [&](const std::string& tag, const std::vector<ExrChannel>& channels, Projected layout,
+                         double clipFar = 0.0) {
     ExrOptions options;
     options.editHeader = [&](Imf::Header& h) {
       addStandardCamera(h, s, layout, s.camera, Imath::Box2i({0, 0}, {s.w - 1, s.h - 1}));
+      if (clipFar > 0.0) addClipPlanes(h, "clipNear", "clipFar", s.camera.nearPlane, clipFar);
     };
     const std::string path = dir.file(tag + ".exr");
     ssrcl::test::writeExr(path, s.w, s.h, channels, options);
@@ -658,6 +660,12 @@ TEST(OrthographicHeaderCamera, PassesDecideWhichWayItLooks) {
   // World normals decide (they face the camera), or positions do (they lie in front of it).
   expectTraced(write("exr-normals", plain + worldNormals(s, "N."), Projected::StandardNdc), "", "looking down +z");
   expectTraced(write("houdini-normals", plain + worldNormals(s, "N."), Projected::Houdini), "", "looking down -z");
+  // Header clip planes hold for the reading the passes choose; an infinite far plane (RenderMan's
+  // default 1e38) leaves the orthographic depth row, which has no infinite form, to the depth pass.
+  expectTraced(write("houdini-clipped", plain + worldNormals(s, "N."), Projected::Houdini, s.camera.farPlane), "",
+               "looking down -z");
+  expectTraced(write("houdini-far-1e38", plain + worldNormals(s, "N."), Projected::Houdini, 1e38), "",
+               "looking down -z");
   const auto cameraSpace = baseChannels(s, "", "roughness") + positions(s, "P.") + cameraNormals(s, "N.", "XYZ", false);
   expectTraced(write("houdini-positions", cameraSpace, Projected::Houdini),
                "--position P.X,P.Y,P.Z --normal-space camera-gl", "looking down -z");

@@ -148,6 +148,19 @@ TEST(GlossyPassForm, TraceWritesIncidentTimesAlbedoPerPixel) {
   EXPECT_GT(checked, 60);
 }
 
+// Batch releases each frame's G-buffer once traced; the form needs its material passes.
+TEST(GlossyPassForm, BatchWritesWhatTraceWrites) {
+  MaterialSample s;
+  const std::string traced = s.dir.file("traced.exr"), batchOut = s.dir.file("batch") + "/";
+  auto r = runCommand(cli("trace " + shellQuote(s.exr) + " --quality draft --output-form glossy-pass -o " + shellQuote(traced)));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  r = runCommand(cli("batch " + shellQuote(s.exr) + " --quality draft --output-form glossy-pass -q -o " + shellQuote(batchOut)));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const ssrcl::test::ExrContents a = ssrcl::test::readExr(traced),
+                                 b = ssrcl::test::readExr(batchOut + std::filesystem::path(s.exr).stem().string() + ".refl.exr");
+  for (const char* c : {"R", "G", "B", "A", "distance"}) EXPECT_EQ(b.channels.at(c).values, a.channels.at(c).values) << c;
+}
+
 TEST(GlossyPassForm, AnF0PassWorksAndMismatchesAreRefused) {
   MaterialSample s;
   // The base colour channels read as an F0 pass: metallic 1 everywhere.

@@ -344,6 +344,9 @@ TEST(LoadGBufferErrors, BareNameInSeveralPartsIsRefused) {
   source.normalChannels = "N.R,N.G,N.B";
   source.roughnessChannel = "roughness.Y";
   expectError([&] { loadGBuffer(source); }, ErrorCode::InvalidInput, file, {"'R' is in 2 parts", "'N.R', 'C.R'"});
+  // Alternatives that the file holds only ambiguously say so, not that the channels are missing.
+  source.colorChannels = "r,g,b|R,G,B";
+  expectError([&] { loadGBuffer(source); }, ErrorCode::InvalidInput, file, {"'R' is in 2 parts", "'N.R', 'C.R'"});
   source.colorChannels = "C.R,C.G,C.B";
   expectGBuffer(loadGBuffer(source), {parts[1].channels[0], parts[1].channels[1], parts[1].channels[2]},
                 parts[1].channels[3], {parts[0].channels[0], parts[0].channels[1], parts[0].channels[2]},

@@ -428,6 +428,22 @@ TEST(Neighbours, AMovedObjectIsNotTakenFromANeighbour) {
   EXPECT_EQ(unchanged, pixels);  // measured: all 3,190
 }
 
+// Views are inputs: resuming the batch with other neighbours refuses the outputs made with these;
+// the same neighbours skip them.
+TEST(Neighbours, ResumingComparesTheViews) {
+  const NeighbourShot& shot = neighbourShot();
+  ASSERT_EQ(shot.batch.exitCode, 0) << shot.batch.output;
+  const std::string batch = shellQuote(SSRCL_CLI) + " batch " + shellQuote(shot.pattern) + " -o " +
+                            shellQuote(shot.dir.file("out") + "/") + " --edge-fade 0";
+  const auto same = runCommand(batch + " --neighbours 1");
+  EXPECT_EQ(same.exitCode, 0) << same.output;
+  EXPECT_NE(same.output.find("3 skipped"), std::string::npos) << same.output;
+  const auto none = runCommand(batch);
+  EXPECT_EQ(none.exitCode, 2) << none.output;
+  EXPECT_NE(none.output.find("shot.1001.refl.exr: exists with views '"), std::string::npos) << none.output;
+  EXPECT_NE(none.output.find("but none is asked now; give --overwrite"), std::string::npos) << none.output;
+}
+
 TEST(Neighbours, BadCountsAndMissingCamerasAreNamed) {
   const NeighbourShot& shot = neighbourShot();
   const std::string batch = shellQuote(SSRCL_CLI) + " batch " + shellQuote(shot.pattern) + " --overwrite -o " +
@@ -439,6 +455,10 @@ TEST(Neighbours, BadCountsAndMissingCamerasAreNamed) {
   EXPECT_EQ(large.exitCode, 2) << large.output;
   EXPECT_NE(large.output.find("--neighbours 2 needs at least 5 frames in the sequence, it has 3"), std::string::npos)
       << large.output;
+  const auto huge = runCommand(batch + " --neighbours 2000000000");
+  EXPECT_EQ(huge.exitCode, 2) << huge.output;
+  EXPECT_NE(huge.output.find("--neighbours 2000000000 with 0 --view: 4000000000 views, at most 16"), std::string::npos)
+      << huge.output;
   // The last frame without its camera (nor one in its header): the frames whose window holds it fail, naming it.
   TempDir dir{"ssrcl-neighbours-camera"};
   for (int k = 0; k < 3; ++k) {

@@ -63,9 +63,13 @@ int runBatch(const BatchOptions& o) {
   OutputRecord record{o.settings.quality, o.in.applyTo(o.settings.resolve()), "", o.in.form.form,
                       o.settings.environment, o.views};
   for (size_t i = 0; i < jobs.size() && !o.dryRun; ++i)
-    if (outcomes[i].status == FrameStatus::Skipped)
-      if (const std::string problem = resumeMismatch(jobs[i].output, jobs[i].input, o.out, record); !problem.empty())
+    if (outcomes[i].status == FrameStatus::Skipped) {
+      OutputRecord asked = record;
+      if (neighbours)
+        for (const std::string& file : neighbours->filesOf(jobs[i].input)) asked.views.push_back(file);
+      if (const std::string problem = resumeMismatch(jobs[i].output, jobs[i].input, o.out, asked); !problem.empty())
         throw Error(ErrorCode::InvalidArgument, problem);
+    }
   if (o.dryRun) {
     for (size_t i = 0; i < jobs.size(); ++i)
       std::cout << jobs[i].name << "\t" << jobs[i].input << "\t" << jobs[i].camera << "\t" << jobs[i].output << "\t"

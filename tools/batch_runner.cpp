@@ -122,7 +122,6 @@ BatchRun BatchRunner::run(const std::vector<FrameJob>& jobs, std::vector<FrameOu
           const std::filesystem::path parent = std::filesystem::path(jobs[f->index].output).parent_path();
           if (!parent.empty()) std::filesystem::create_directories(parent);
           const FrameJob& job = jobs[f->index];
-          toOutputForm(input_.form, f->reflection, f->frame.gbuffer, f->frame.camera, input_.roughness);
           OutputRecord record = record_;
           record.views = f->views;
           ReflectionExrOptions written = writerOptions(output_, record, job.input, input_.sourceFor(job.input), f->frame);
@@ -150,6 +149,8 @@ BatchRun BatchRunner::run(const std::vector<FrameJob>& jobs, std::vector<FrameOu
       f->reflection = pipeline_.output("reflection");  // copies: the pipeline reuses its outputs
       f->distance = pipeline_.output("distance");
       f->view = pipeline_.output("view");  // empty without views
+      // Here, while the frame's material passes are still held: the G-buffer is released below.
+      toOutputForm(input_.form, f->reflection, f->frame.gbuffer, f->frame.camera, input_.roughness);
       f->views = staticViews_;
       if (neighbours_) {
         const std::vector<std::string> neighbours = neighbours_->files();

@@ -9,14 +9,15 @@ namespace ssrcl::cli {
 NeighbourWindow::NeighbourWindow(const GBufferInputOptions& input, std::vector<FrameJob> sequence, int k, int firstView)
     : input_(viewInputOptions(input)), sequence_(std::move(sequence)), k_(k), firstView_(firstView) {
   if (k < 0) throw Error(ErrorCode::InvalidArgument, "--neighbours " + std::to_string(k) + ": must be 0 or more");
+  // The view count first, in 64 bits: 2K + 1 overflows int for a huge K.
+  if (firstView + 2LL * k > Pipeline::kMaxViews)
+    throw Error(ErrorCode::InvalidArgument, "--neighbours " + std::to_string(k) + " with " + std::to_string(firstView) +
+                                                " --view: " + std::to_string(firstView + 2LL * k) + " views, at most " +
+                                                std::to_string(Pipeline::kMaxViews));
   if (sequence_.size() < size_t(2 * k + 1))
     throw Error(ErrorCode::InvalidArgument, "--neighbours " + std::to_string(k) + " needs at least " +
                                                 std::to_string(2 * k + 1) + " frames in the sequence, it has " +
                                                 std::to_string(sequence_.size()));
-  if (firstView + 2 * k > Pipeline::kMaxViews)
-    throw Error(ErrorCode::InvalidArgument, "--neighbours " + std::to_string(k) + " with " + std::to_string(firstView) +
-                                                " --view: " + std::to_string(firstView + 2 * k) + " views, at most " +
-                                                std::to_string(Pipeline::kMaxViews));
   for (size_t i = 0; i < sequence_.size(); ++i) byInput_[sequence_[i].input] = i;
   slots_.resize(size_t(2 * k));
 }
@@ -61,6 +62,15 @@ void NeighbourWindow::moveTo(Pipeline& pipeline, const std::string& input) {
 
 void NeighbourWindow::keep(const std::string& input, Frame&& frame) {
   loaded_[indexOf(input)] = std::make_shared<const Frame>(std::move(frame));
+}
+
+std::vector<std::string> NeighbourWindow::filesOf(const std::string& input) const {
+  const size_t index = indexOf(input);
+  const auto [first, last] = span(index, sequence_.size(), k_);
+  std::vector<std::string> out;
+  for (size_t j = first; j <= last; ++j)
+    if (j != index) out.push_back(sequence_[j].input);
+  return out;
 }
 
 std::vector<std::string> NeighbourWindow::files() const {

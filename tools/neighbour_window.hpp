@@ -36,6 +36,9 @@ class NeighbourWindow {
   void keep(const std::string& input, Frame&& frame);
   // The neighbours' files in view order (for the output's record of its views).
   std::vector<std::string> files() const;
+  // The files of the frame read from `input`'s neighbours, in sequence order (what resuming
+  // compares with an output's record).
+  std::vector<std::string> filesOf(const std::string& input) const;
 
  private:
   size_t indexOf(const std::string& input) const;

@@ -1,5 +1,7 @@
 #include "resume_check.hpp"
 
+#include <algorithm>
+
 #include <nlohmann/json.hpp>
 
 #include "settings_json.hpp"
@@ -40,6 +42,23 @@ std::string resumeMismatch(const std::string& output, const std::string& input, 
   if (recordedEnvironment != asked.environment) {
     const auto named = [](const std::string& file) { return file.empty() ? std::string("none") : "'" + file + "'"; };
     return differs(output, "environment", named(recordedEnvironment), named(asked.environment));
+  }
+
+  // Views are inputs too (--view, --neighbours K). Neighbours take view slots in the order frames
+  // were traced, so the lists are compared as sets.
+  std::vector<std::string> recordedViews, askedViews = asked.views;
+  if (recordedInputs.is_object() && recordedInputs.contains("views") && recordedInputs["views"].is_array())
+    for (const auto& v : recordedInputs["views"])
+      if (v.is_string()) recordedViews.push_back(v.get<std::string>());
+  std::sort(recordedViews.begin(), recordedViews.end());
+  std::sort(askedViews.begin(), askedViews.end());
+  if (recordedViews != askedViews) {
+    const auto listed = [](const std::vector<std::string>& files) {
+      std::string out;
+      for (const std::string& f : files) out += (out.empty() ? "'" : ", '") + f + "'";
+      return out.empty() ? std::string("none") : out;
+    };
+    return differs(output, "views", listed(recordedViews), listed(askedViews));
   }
 
   const nlohmann::ordered_json recorded = nlohmann::ordered_json::parse(*settings, nullptr, false);
