@@ -121,7 +121,7 @@ bool operator!=(const TraceSettings& a, const TraceSettings& b);
 //   "high"      Hi-Z, 16 rays, 5x5 ray reuse (a quarter of each neighbour's rays), edge-aware filter.
 //   "reference" Linear march at half-pixel steps, 256 rays per pixel, no reuse, no filter: the
 //               best answer screen-space information allows, the yardstick.
-// Corpus means (docs/BENCHMARKS.md): draft 19.5, medium 23.0, high 24.1 dB against Cycles.
+// Corpus means (docs/BENCHMARKS.md): draft 19.5, medium 23.0, high 24.4, reference 24.6 dB against Cycles.
 // Throws Error(InvalidArgument) for an unknown name.
 TraceSettings qualityPreset(const std::string& name);
 
