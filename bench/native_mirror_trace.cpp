@@ -316,20 +316,17 @@ struct NativeMirrorTrace::Impl {
     std::vector<vec3> dirs;
     std::vector<size_t> pixels;
     std::vector<float> fields, tHit;
-    // In tiles as wide as the block is tall: neighbours' rays walk the same cells, so a lane's
-    // texel read tends to find the line a neighbouring lane's brought in.
-    for (int x0 = 0; x0 < w; x0 += y1 - y0)
-      for (int y = y0; y < y1; ++y)
-        for (int x = x0; x < std::min(w, x0 + y1 - y0); ++x) {
-          const size_t i = size_t(y) * w + x;
-          packetDistance[i] = 0.0f;
-          ScreenRay ray;
-          vec3 dir;
-          if (!mirrorRay(x, y, ray, dir)) continue;
-          list.push_back(ray);
-          dirs.push_back(dir);
-          pixels.push_back(i);
-        }
+    for (int y = y0; y < y1; ++y)
+      for (int x = 0; x < w; ++x) {
+        const size_t i = size_t(y) * w + x;
+        packetDistance[i] = 0.0f;
+        ScreenRay ray;
+        vec3 dir;
+        if (!mirrorRay(x, y, ray, dir)) continue;
+        list.push_back(ray);
+        dirs.push_back(dir);
+        pixels.push_back(i);
+      }
     const size_t count = list.size();
     fields.resize(count * kRayFields);
     RayArrays rays{{}, count};

@@ -48,21 +48,6 @@ vf planeSide(const vf* ray, vf t, const vf* p, const vf* n) {
   return (qx * n[0] + qy * n[1] + qz * n[2]) - qw * (p[0] * n[0] + p[1] * n[1] + p[2] * n[2]);
 }
 
-// One packet's rays and where each lane stands in trace_hiz's loop.
-struct Packet {
-  vf ray[kRayFields] = {};
-  vf nudge = {}, t = {};
-  vi deeper = {}, mip = {}, iterations = {}, rayIndex = vi{} - 1;  // -1: lane free
-};
-
-// What one step of a packet reads, fetched for every packet before any is used, so that the
-// packets' texel reads (mostly cache misses) overlap instead of each step waiting on its own.
-struct StepReads {
-  vi alive, fine, coarse, pixel4;
-  vf tExit, p[4], n[3], thickness, dMin;
-};
-constexpr int kPacketsInFlight = 4;
-
 }  // namespace
 
 void tracePackets(const HizScene& sc, const RayArrays& rays, float* tHit) {
@@ -83,87 +68,77 @@ void tracePackets(const HizScene& sc, const RayArrays& rays, float* tHit) {
   const vi zeroI = {}, lastLevel = zeroI + (sc.levelCount - 1), firstCoarse = imin(zeroI + 1, lastLevel);
   const vi lastX = zeroI + (sc.width - 1), lastY = zeroI + (sc.height - 1);
   const vf zero = {}, one = zero + 1.0f;
-  Packet packets[kPacketsInFlight];
-  StepReads reads[kPacketsInFlight];
+  // Each lane's ray and where it stands in trace_hiz's loop.
+  vf ray[kRayFields] = {};
+  vf nudge = {}, t = {};
+  vi deeper = {}, mip = {}, iterations = {}, rayIndex = zeroI - 1;  // -1: lane free
   size_t next = 0;
   for (;;) {
-    bool anyLoaded = false;
-    for (int k = 0; k < kPacketsInFlight; ++k) {
-      Packet& pk = packets[k];
-      StepReads& rd = reads[k];
-      // Free lanes take the next rays.
-      __mmask16 fresh = 0;
-      for (__mmask16 free = maskOf(pk.rayIndex < 0); free && next < rays.count; free &= free - 1, ++next) {
-        const int lane = __builtin_ctz(free);
-        fresh |= __mmask16(1u << lane);
-        for (int f = 0; f < kRayFields; ++f) pk.ray[f][lane] = rays.field[f][next];
-        pk.rayIndex[lane] = int(next);
-      }
-      const vf* ray = pk.ray;
-      if (fresh) {
-        const vi isFresh = fromMask(fresh);
-        const vf ax = vabs(ray[kDsx]), ay = vabs(ray[kDsy]);
-        pk.nudge = isFresh ? 0.01f / vmax(ax, ay) : pk.nudge;  // a hundredth of a pixel along the major axis
-        pk.deeper = isFresh ? vi(ray[kQ0z] * ray[kDqw] - ray[kDqz] * ray[kQ0w] > zero) : pk.deeper;
-        vi cx, cy;
-        const vf leave = cellExit(ray, zero, pk.nudge, one, cx, cy);  // leave the origin pixel first
-        pk.t = isFresh ? leave : pk.t;
-        pk.mip = isFresh ? zeroI : pk.mip;
-        pk.iterations = isFresh ? zeroI : pk.iterations;
-      }
-      const vi loaded = pk.rayIndex >= 0;
-      anyLoaded |= maskOf(loaded) != 0;
-      rd.alive = loaded & (pk.iterations < sc.maxIterations) & (pk.t <= one);
-      const vi missed = loaded & ~rd.alive;
-      _mm512_mask_i32scatter_ps(tHit, maskOf(missed), (__m512i)pk.rayIndex, (__m512)(zero - 1.0f), 4);
-      pk.rayIndex = missed ? zeroI - 1 : pk.rayIndex;
-
-      vi cellX, cellY;
-      rd.tExit = cellExit(ray, pk.t, pk.nudge, __builtin_convertvector(vi(zeroI + 1) << pk.mip, vf), cellX, cellY);
-      rd.fine = rd.alive & (pk.mip == 0);
-      const vi px = imin(imax(cellX, zeroI), lastX), py = imin(imax(cellY, zeroI), lastY);
-      rd.pixel4 = (py * sc.width + px) * 4;
-      for (int c = 0; c < 4; ++c) rd.p[c] = gather(sc.positions + c, rd.pixel4, rd.fine);
-      for (int c = 0; c < 3; ++c) rd.n[c] = gather(sc.normals + c, rd.pixel4, rd.fine);
-      rd.thickness = gather(sc.thickness, rd.pixel4 >> 2, rd.fine);
-      rd.coarse = rd.alive & (pk.mip > 0);
-      const vi levelWidth = level(1, pk.mip);
-      const vi cx = imin(imax(cellX, zeroI), levelWidth - 1), cy = imin(imax(cellY, zeroI), level(2, pk.mip) - 1);
-      rd.dMin = gather(sc.hzb, level(0, pk.mip) + cy * levelWidth + cx, rd.coarse);
+    // Free lanes take the next rays.
+    __mmask16 fresh = 0;
+    for (__mmask16 free = maskOf(rayIndex < 0); free && next < rays.count; free &= free - 1, ++next) {
+      const int lane = __builtin_ctz(free);
+      fresh |= __mmask16(1u << lane);
+      for (int f = 0; f < kRayFields; ++f) ray[f][lane] = rays.field[f][next];
+      rayIndex[lane] = int(next);
     }
-    if (!anyLoaded) break;
-
-    for (int k = 0; k < kPacketsInFlight; ++k) {
-      Packet& pk = packets[k];
-      const StepReads& rd = reads[k];
-      const vf* ray = pk.ray;
-      // Full resolution (hit_pixel): the pixel's plane crossed from the front, or within its thickness.
-      const vf tIn = pk.t, tOut = vmin(rd.tExit, one);
-      const vf gIn = planeSide(ray, tIn, rd.p, rd.n), gOut = planeSide(ray, tOut, rd.p, rd.n);
-      const vi surface = rd.p[3] < kNoSurface;
-      const vi inFront = ~surface | (gOut > zero);
-      const vi facing = surface & (rd.n[0] * ray[kDirx] + rd.n[1] * ray[kDiry] + rd.n[2] * ray[kDirz] < zero);
-      const vi crosses = rd.fine & facing & (gIn > zero) & (gOut <= zero);
-      const vi within = rd.fine & facing & (gIn <= zero) & (-gIn / vf(ray[kQ0w] + tIn * ray[kDqw]) <= rd.thickness);
-      const vi hit = crosses | within;
-      const vf tHitLane = crosses ? tIn + (tOut - tIn) * (gIn / (gIn - gOut)) : tIn;
-      _mm512_mask_i32scatter_ps(tHit, maskOf(hit), (__m512i)pk.rayIndex, (__m512)tHitLane, 4);
-
-      // Coarser levels: climb while in front of the cell's nearest depth, descend where it may hit.
-      const vf depth = -vf(ray[kQ0z] + pk.t * ray[kDqz]) / vf(ray[kQ0w] + pk.t * ray[kDqw]);
-      const vi ahead = depth < rd.dMin;
-      const vf denom = ray[kDqz] + rd.dMin * ray[kDqw];
-      const vf root = -(ray[kQ0z] + rd.dMin * ray[kQ0w]) / denom;
-      const vi rootOk = pk.deeper & (rd.dMin < kNoSurface) & (denom != zero) & (vabs(root) <= kNoSurface);
-      const vf tCross = rootOk ? root : kInf;
-      const vi climb = rd.coarse & ahead & ~(tCross <= rd.tExit);
-
-      pk.t = climb | (rd.fine & ~hit) ? rd.tExit : (rd.coarse & ahead) ? vmax(pk.t, tCross) : pk.t;
-      pk.mip = climb ? imin(pk.mip + 1, lastLevel)
-                     : (rd.coarse ? pk.mip - 1 : (rd.fine & inFront) ? firstCoarse : pk.mip);
-      pk.iterations += rd.alive & 1;
-      pk.rayIndex = hit ? zeroI - 1 : pk.rayIndex;
+    const vi loaded = rayIndex >= 0;
+    if (!maskOf(loaded)) break;
+    if (fresh) {
+      const vi isFresh = fromMask(fresh);
+      const vf ax = vabs(ray[kDsx]), ay = vabs(ray[kDsy]);
+      nudge = isFresh ? 0.01f / vmax(ax, ay) : nudge;  // a hundredth of a pixel along the major axis
+      deeper = isFresh ? vi(ray[kQ0z] * ray[kDqw] - ray[kDqz] * ray[kQ0w] > zero) : deeper;
+      vi cx, cy;
+      const vf leave = cellExit(ray, zero, nudge, one, cx, cy);  // leave the origin pixel first
+      t = isFresh ? leave : t;
+      mip = isFresh ? zeroI : mip;
+      iterations = isFresh ? zeroI : iterations;
     }
+    const vi alive = loaded & (iterations < sc.maxIterations) & (t <= one);
+    const vi missed = loaded & ~alive;
+    _mm512_mask_i32scatter_ps(tHit, maskOf(missed), (__m512i)rayIndex, (__m512)(zero - 1.0f), 4);
+
+    vi cellX, cellY;
+    const vf tExit = cellExit(ray, t, nudge, __builtin_convertvector(vi(zeroI + 1) << mip, vf), cellX, cellY);
+
+    // Full resolution (hit_pixel): the pixel's plane crossed from the front, or within its thickness.
+    const vi fine = alive & (mip == 0);
+    const vi px = imin(imax(cellX, zeroI), lastX), py = imin(imax(cellY, zeroI), lastY);
+    const vi pixel4 = (py * sc.width + px) * 4;
+    vf p[4], n[3];
+    for (int c = 0; c < 4; ++c) p[c] = gather(sc.positions + c, pixel4, fine);
+    for (int c = 0; c < 3; ++c) n[c] = gather(sc.normals + c, pixel4, fine);
+    const vf tIn = t, tOut = vmin(tExit, one);
+    const vf gIn = planeSide(ray, tIn, p, n), gOut = planeSide(ray, tOut, p, n);
+    const vi surface = p[3] < kNoSurface;
+    const vi inFront = ~surface | (gOut > zero);
+    const vi facing = surface & (n[0] * ray[kDirx] + n[1] * ray[kDiry] + n[2] * ray[kDirz] < zero);
+    const vi crosses = fine & facing & (gIn > zero) & (gOut <= zero);
+    const vi behind = fine & facing & (gIn <= zero);
+    const vf thickness = gather(sc.thickness, pixel4 >> 2, behind);
+    const vi within = behind & (-gIn / vf(ray[kQ0w] + tIn * ray[kDqw]) <= thickness);
+    const vi hit = crosses | within;
+    const vf tHitLane = crosses ? tIn + (tOut - tIn) * (gIn / (gIn - gOut)) : tIn;
+    _mm512_mask_i32scatter_ps(tHit, maskOf(hit), (__m512i)rayIndex, (__m512)tHitLane, 4);
+
+    // Coarser levels: climb while in front of the cell's nearest depth, descend where it may hit.
+    const vi coarse = alive & (mip > 0);
+    const vi levelWidth = level(1, mip);
+    const vi cx = imin(imax(cellX, zeroI), levelWidth - 1), cy = imin(imax(cellY, zeroI), level(2, mip) - 1);
+    const vf dMin = gather(sc.hzb, level(0, mip) + cy * levelWidth + cx, coarse);
+    const vf depth = -vf(ray[kQ0z] + t * ray[kDqz]) / vf(ray[kQ0w] + t * ray[kDqw]);
+    const vi ahead = depth < dMin;
+    const vf denom = ray[kDqz] + dMin * ray[kDqw];
+    const vf root = -(ray[kQ0z] + dMin * ray[kQ0w]) / denom;
+    const vi rootOk = deeper & (dMin < kNoSurface) & (denom != zero) & (vabs(root) <= kNoSurface);
+    const vf tCross = rootOk ? root : kInf;
+    const vi climb = coarse & ahead & ~(tCross <= tExit);
+
+    t = climb | (fine & ~hit) ? tExit : (coarse & ahead) ? vmax(t, tCross) : t;
+    mip = climb ? imin(mip + 1, lastLevel) : (coarse ? mip - 1 : (fine & inFront) ? firstCoarse : mip);
+    iterations += alive & 1;
+    rayIndex = hit | missed ? zeroI - 1 : rayIndex;
   }
 }
 
