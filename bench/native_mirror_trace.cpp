@@ -70,7 +70,7 @@ struct NativeMirrorTrace::Impl {
   int maxIterations;
   const GBuffer& g;
   std::vector<HzbLevel> levels;
-  std::vector<float> hzb, thickness, distance, packetDistance;
+  std::vector<float> hzb, thickness, distance, packetDistance, planes;
   std::vector<vec4> positions, normals;
   std::vector<unsigned char> reflects;
   long long rays = 0;
@@ -338,8 +338,7 @@ struct NativeMirrorTrace::Impl {
       for (int f = 0; f < kRayFields; ++f) fields[f * count + k] = values[f];
     }
     tHit.resize(count);
-    const HizScene scene{w, h, hzb.data(), levels.data(), int(levels.size()), &positions[0].x, &normals[0].x,
-                         thickness.data(), maxIterations};
+    const HizScene scene{w, h, hzb.data(), levels.data(), int(levels.size()), planes.data(), maxIterations};
 #if defined(SSRCL_PACKET_TRACE)  // else packetTraceSupported() is false: runPackets stops first
     tracePackets(scene, rays, tHit.data());
 #endif
@@ -396,6 +395,12 @@ double NativeMirrorTrace::runPackets(int threads) {
   if (int(m.levels.size()) > kMaxPacketLevels) throw std::invalid_argument("native packet trace: image too large");
   constexpr int kRows = 8;
   const auto start = Clock::now();
+  m.planes.resize(m.distance.size() * kPlaneFloats);
+#if defined(SSRCL_PACKET_TRACE)  // as in tracePacketRows
+  parallelRows(m.h, threads, [&m](int y) {
+    packPlanes(&m.positions[0].x, &m.normals[0].x, m.thickness.data(), size_t(y) * m.w, m.w, m.planes.data());
+  });
+#endif
   parallelRows((m.h + kRows - 1) / kRows, threads,
                [&m](int b) { m.tracePacketRows(b * kRows, std::min(m.h, (b + 1) * kRows)); });
   return msSince(start);

@@ -41,14 +41,30 @@ vf cellExit(const vf* ray, vf t, vf nudge, vf size, vi& cellX, vi& cellY) {
   return vmin(tx, ty);
 }
 
-// dot(q(t).xyz, n) - q(t).w * dot(p, n): trace.cl plane_side.
-vf planeSide(const vf* ray, vf t, const vf* p, const vf* n) {
+// dot(q(t).xyz, n) - q(t).w * dot(p, n): trace.cl plane_side, dot(p, n) from packPlanes.
+vf planeSide(const vf* ray, vf t, const vf* n, vf pn) {
   const vf qx = ray[kQ0x] + t * ray[kDqx], qy = ray[kQ0y] + t * ray[kDqy], qz = ray[kQ0z] + t * ray[kDqz];
   const vf qw = ray[kQ0w] + t * ray[kDqw];
-  return (qx * n[0] + qy * n[1] + qz * n[2]) - qw * (p[0] * n[0] + p[1] * n[1] + p[2] * n[2]);
+  return (qx * n[0] + qy * n[1] + qz * n[2]) - qw * pn;
 }
 
 }  // namespace
+
+void packPlanes(const float* positions, const float* normals, const float* thickness, size_t first, size_t count,
+                float* planes) {
+  for (size_t i = first; i < first + count; ++i) {
+    const float* p = positions + 4 * i;
+    const float* n = normals + 4 * i;
+    float* out = planes + kPlaneFloats * i;
+    out[0] = n[0];
+    out[1] = n[1];
+    out[2] = n[2];
+    out[3] = p[0] * n[0] + p[1] * n[1] + p[2] * n[2];
+    out[4] = p[3];
+    out[5] = thickness[i];
+    out[6] = out[7] = 0.0f;
+  }
+}
 
 void tracePackets(const HizScene& sc, const RayArrays& rays, float* tHit) {
   // The level table in two registers, looked up per lane by its mip.
@@ -105,18 +121,18 @@ void tracePackets(const HizScene& sc, const RayArrays& rays, float* tHit) {
     // Full resolution (hit_pixel): the pixel's plane crossed from the front, or within its thickness.
     const vi fine = alive & (mip == 0);
     const vi px = imin(imax(cellX, zeroI), lastX), py = imin(imax(cellY, zeroI), lastY);
-    const vi pixel4 = (py * sc.width + px) * 4;
-    vf p[4], n[3];
-    for (int c = 0; c < 4; ++c) p[c] = gather(sc.positions + c, pixel4, fine);
-    for (int c = 0; c < 3; ++c) n[c] = gather(sc.normals + c, pixel4, fine);
+    const vi record = (py * sc.width + px) * kPlaneFloats;
+    vf n[3];
+    for (int c = 0; c < 3; ++c) n[c] = gather(sc.planes + c, record, fine);
+    const vf pn = gather(sc.planes + 3, record, fine);
     const vf tIn = t, tOut = vmin(tExit, one);
-    const vf gIn = planeSide(ray, tIn, p, n), gOut = planeSide(ray, tOut, p, n);
-    const vi surface = p[3] < kNoSurface;
+    const vf gIn = planeSide(ray, tIn, n, pn), gOut = planeSide(ray, tOut, n, pn);
+    const vi surface = gather(sc.planes + 4, record, fine) < kNoSurface;
     const vi inFront = ~surface | (gOut > zero);
     const vi facing = surface & (n[0] * ray[kDirx] + n[1] * ray[kDiry] + n[2] * ray[kDirz] < zero);
     const vi crosses = fine & facing & (gIn > zero) & (gOut <= zero);
     const vi behind = fine & facing & (gIn <= zero);
-    const vf thickness = gather(sc.thickness, pixel4 >> 2, behind);
+    const vf thickness = gather(sc.planes + 5, record, behind);
     const vi within = behind & (-gIn / vf(ray[kQ0w] + tIn * ray[kDqw]) <= thickness);
     const vi hit = crosses | within;
     const vf tHitLane = crosses ? tIn + (tOut - tIn) * (gIn / (gIn - gOut)) : tIn;

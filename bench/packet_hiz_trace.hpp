@@ -17,11 +17,17 @@ struct HizScene {
   const float* hzb;
   const HzbLevel* levels;
   int levelCount;            // at most kMaxPacketLevels
-  const float* positions;    // per pixel x, y, z, depth (depth >= FLT_MAX: no surface)
-  const float* normals;      // per pixel x, y, z, roughness
-  const float* thickness;    // per pixel
+  const float* planes;       // per pixel kPlaneFloats, from packPlanes
   int maxIterations;
 };
+constexpr int kPlaneFloats = 8;
+
+// What the hit test reads of a pixel in one 32-byte record, so that a lane's step at full
+// resolution touches one cache line instead of three: normal x, y, z, dot(point, normal), depth
+// (>= FLT_MAX: no surface), thickness. Pixels [first, first + count) of setup's arrays (positions
+// and normals 4 floats per pixel).
+void packPlanes(const float* positions, const float* normals, const float* thickness, size_t first, size_t count,
+                float* planes);
 constexpr int kMaxPacketLevels = 32;  // sides up to 2^31 pixels
 
 // Screen rays (trace.cl ScreenRay + the view-space direction), one array per field.
