@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <functional>
+#include <memory>
 #include <stdexcept>
 #include <glm/glm.hpp>
 #include <glm/gtc/matrix_inverse.hpp>
@@ -70,7 +71,8 @@ struct NativeMirrorTrace::Impl {
   int maxIterations;
   const GBuffer& g;
   std::vector<HzbLevel> levels;
-  std::vector<float> hzb, thickness, distance, packetDistance, planes;
+  std::vector<float> hzb, thickness, distance, packetDistance, planeStorage;
+  float* planes = nullptr;  // packPlanes' records, in planeStorage on a cache-line boundary
   std::vector<vec4> positions, normals;
   std::vector<unsigned char> reflects;
   long long rays = 0;
@@ -338,7 +340,7 @@ struct NativeMirrorTrace::Impl {
       for (int f = 0; f < kRayFields; ++f) fields[f * count + k] = values[f];
     }
     tHit.resize(count);
-    const HizScene scene{w, h, hzb.data(), levels.data(), int(levels.size()), planes.data(), maxIterations};
+    const HizScene scene{w, h, hzb.data(), levels.data(), int(levels.size()), planes, maxIterations};
 #if defined(SSRCL_PACKET_TRACE)  // else packetTraceSupported() is false: runPackets stops first
     tracePackets(scene, rays, tHit.data());
 #endif
@@ -395,10 +397,14 @@ double NativeMirrorTrace::runPackets(int threads) {
   if (int(m.levels.size()) > kMaxPacketLevels) throw std::invalid_argument("native packet trace: image too large");
   constexpr int kRows = 8;
   const auto start = Clock::now();
-  m.planes.resize(m.distance.size() * kPlaneFloats);
+  const size_t planeBytes = m.distance.size() * kPlaneFloats * sizeof(float);
+  m.planeStorage.resize((planeBytes + 64) / sizeof(float));
+  void* storage = m.planeStorage.data();
+  size_t space = m.planeStorage.size() * sizeof(float);
+  m.planes = static_cast<float*>(std::align(64, planeBytes, storage, space));
 #if defined(SSRCL_PACKET_TRACE)  // as in tracePacketRows
   parallelRows(m.h, threads, [&m](int y) {
-    packPlanes(&m.positions[0].x, &m.normals[0].x, m.thickness.data(), size_t(y) * m.w, m.w, m.planes.data());
+    packPlanes(&m.positions[0].x, &m.normals[0].x, m.thickness.data(), size_t(y) * m.w, m.w, m.planes);
   });
 #endif
   parallelRows((m.h + kRows - 1) / kRows, threads,

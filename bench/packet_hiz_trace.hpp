@@ -20,15 +20,15 @@ struct HizScene {
   const float* planes;       // per pixel kPlaneFloats, from packPlanes
   int maxIterations;
 };
+constexpr int kMaxPacketLevels = 32;  // sides up to 2^31 pixels
 constexpr int kPlaneFloats = 8;
 
 // What the hit test reads of a pixel in one 32-byte record, so that a lane's step at full
-// resolution touches one cache line instead of three: normal x, y, z, dot(point, normal), depth
+// resolution touches one cache line instead of three (planes 64-byte aligned): normal x, y, z, dot(point, normal), depth
 // (>= FLT_MAX: no surface), thickness. Pixels [first, first + count) of setup's arrays (positions
 // and normals 4 floats per pixel).
 void packPlanes(const float* positions, const float* normals, const float* thickness, size_t first, size_t count,
                 float* planes);
-constexpr int kMaxPacketLevels = 32;  // sides up to 2^31 pixels
 
 // Screen rays (trace.cl ScreenRay + the view-space direction), one array per field.
 enum RayField { kS0x, kS0y, kDsx, kDsy, kQ0x, kQ0y, kQ0z, kQ0w, kDqx, kDqy, kDqz, kDqw, kDirx, kDiry, kDirz, kRayFields };
