@@ -6,10 +6,13 @@
 #include <chrono>
 #include <cmath>
 #include <functional>
+#include <memory>
 #include <stdexcept>
 #include <glm/glm.hpp>
 #include <glm/gtc/matrix_inverse.hpp>
 #include <thread>
+
+#include "packet_hiz_trace.hpp"
 
 namespace ssrcl::bench {
 namespace {
@@ -50,10 +53,6 @@ void parallelRows(int rows, int threads, const std::function<void(int)>& row) {
   for (std::thread& t : pool) t.join();
 }
 
-struct Level {
-  int offset, width, height;
-};
-
 struct ScreenRay {
   vec2 s0, ds;
   vec4 q0, dq;  // xyz = Q, w = k
@@ -71,8 +70,9 @@ struct NativeMirrorTrace::Impl {
   float nearPlane, farPlane, thicknessRel, maxRoughness, constantRoughness;
   int maxIterations;
   const GBuffer& g;
-  std::vector<Level> levels;
-  std::vector<float> hzb, thickness, distance;
+  std::vector<HzbLevel> levels;
+  std::vector<float> hzb, thickness, distance, packetDistance, planeStorage;
+  float* planes = nullptr;  // packPlanes' records, in planeStorage on a cache-line boundary
   std::vector<vec4> positions, normals;
   std::vector<unsigned char> reflects;
   long long rays = 0;
@@ -95,6 +95,7 @@ struct NativeMirrorTrace::Impl {
     hzb.resize(offset);
     thickness.resize(n);
     distance.resize(n);
+    packetDistance.resize(n);
     positions.resize(n);
     normals.resize(n);
     reflects.resize(n);
@@ -171,7 +172,7 @@ struct NativeMirrorTrace::Impl {
   }
 
   SSRCL_NATIVE_CLONES void reduceRow(int l, int y) {
-    const Level dst = levels[l], src = levels[l - 1];
+    const HzbLevel dst = levels[l], src = levels[l - 1];
     const float* s = hzb.data() + src.offset;
     const int y0 = 2 * y, y1 = std::min(y0 + 1, src.height - 1);
     for (int x = 0; x < dst.width; ++x) {
@@ -183,7 +184,7 @@ struct NativeMirrorTrace::Impl {
   }
 
   float hzbFetch(int level, glm::ivec2 cell) const {
-    const Level l = levels[level];
+    const HzbLevel l = levels[level];
     cell = glm::clamp(cell, glm::ivec2(0), glm::ivec2(l.width - 1, l.height - 1));
     return hzb[l.offset + cell.y * l.width + cell.x];
   }
@@ -275,30 +276,76 @@ struct NativeMirrorTrace::Impl {
     return -1.0f;
   }
 
-  // trace.cl trace_from + the mirror direction of trace_rays.
+  // trace.cl trace_from + the mirror direction of trace_rays: pixel (x, y)'s ray, if it has one.
+  bool mirrorRay(int x, int y, ScreenRay& ray, vec3& dir) const {
+    const size_t i = size_t(y) * w + x;
+    if (!reflects[i]) return false;
+    vec3 origin, step;
+    viewLine(pixelToNdc(vec2(x + 0.5f, y + 0.5f)), origin, step);
+    const vec3 o = -glm::normalize(step), n(normals[i]), p(positions[i]);
+    if (glm::dot(o, n) <= 0.0f) return false;
+    dir = 2.0f * glm::dot(o, n) * n - o;
+    const float lengthMax = 1e6f * -p.z;
+    float len = dir.z > 0.0f ? (-nearPlane * 1.001f - p.z) / dir.z
+              : dir.z < 0.0f ? (-farPlane - p.z) / dir.z : lengthMax;
+    len = std::min(len, lengthMax);
+    if (!(len > 0.0f) || !makeScreenRay(p, p + dir * len, ray)) return false;
+    return std::max(std::fabs(ray.ds.x), std::fabs(ray.ds.y)) > 0.0f;
+  }
+
+  // The view-space distance from pixel i's point to its ray's hit at t.
+  float hitDistance(size_t i, const ScreenRay& ray, float t) const {
+    const vec4 q = ray.q(t);
+    return glm::length(vec3(q) / q.w - vec3(positions[i]));
+  }
+
   SSRCL_NATIVE_CLONES void traceRow(int y) {
     for (int x = 0; x < w; ++x) {
       const size_t i = size_t(y) * w + x;
       distance[i] = 0.0f;
-      if (!reflects[i]) continue;
-      vec3 origin, step;
-      viewLine(pixelToNdc(vec2(x + 0.5f, y + 0.5f)), origin, step);
-      const vec3 o = -glm::normalize(step), n(normals[i]), p(positions[i]);
-      if (glm::dot(o, n) <= 0.0f) continue;
-      const vec3 dir = 2.0f * glm::dot(o, n) * n - o;
-      const float lengthMax = 1e6f * -p.z;
-      float len = dir.z > 0.0f ? (-nearPlane * 1.001f - p.z) / dir.z
-                : dir.z < 0.0f ? (-farPlane - p.z) / dir.z : lengthMax;
-      len = std::min(len, lengthMax);
       ScreenRay ray;
-      if (!(len > 0.0f) || !makeScreenRay(p, p + dir * len, ray)) continue;
-      if (!(std::max(std::fabs(ray.ds.x), std::fabs(ray.ds.y)) > 0.0f)) continue;
+      vec3 dir;
+      if (!mirrorRay(x, y, ray, dir)) continue;
       const float t = traceHiz(ray, dir);
-      if (t >= 0.0f) {
-        const vec4 q = ray.q(t);
-        distance[i] = glm::length(vec3(q) / q.w - p);
-      }
+      if (t >= 0.0f) distance[i] = hitDistance(i, ray, t);
     }
+  }
+
+  // Rows [y0, y1): their rays traced 16 at a time by packet_hiz_trace, thousands per call so that
+  // lanes rarely wait for the last rays. Cloned as traceRow is, so the rays are the same bits.
+  SSRCL_NATIVE_CLONES void tracePacketRows(int y0, int y1) {
+    std::vector<ScreenRay> list;
+    std::vector<vec3> dirs;
+    std::vector<size_t> pixels;
+    std::vector<float> fields, tHit;
+    for (int y = y0; y < y1; ++y)
+      for (int x = 0; x < w; ++x) {
+        const size_t i = size_t(y) * w + x;
+        packetDistance[i] = 0.0f;
+        ScreenRay ray;
+        vec3 dir;
+        if (!mirrorRay(x, y, ray, dir)) continue;
+        list.push_back(ray);
+        dirs.push_back(dir);
+        pixels.push_back(i);
+      }
+    const size_t count = list.size();
+    fields.resize(count * kRayFields);
+    RayArrays rays{{}, count};
+    for (int f = 0; f < kRayFields; ++f) rays.field[f] = fields.data() + f * count;
+    for (size_t k = 0; k < count; ++k) {
+      const ScreenRay& r = list[k];
+      const float values[kRayFields] = {r.s0.x, r.s0.y, r.ds.x, r.ds.y, r.q0.x, r.q0.y, r.q0.z, r.q0.w,
+                                        r.dq.x, r.dq.y, r.dq.z, r.dq.w, dirs[k].x, dirs[k].y, dirs[k].z};
+      for (int f = 0; f < kRayFields; ++f) fields[f * count + k] = values[f];
+    }
+    tHit.resize(count);
+    const HizScene scene{w, h, hzb.data(), levels.data(), int(levels.size()), planes, maxIterations};
+#if defined(SSRCL_PACKET_TRACE)  // else packetTraceSupported() is false: runPackets stops first
+    tracePackets(scene, rays, tHit.data());
+#endif
+    for (size_t k = 0; k < count; ++k)
+      if (tHit[k] >= 0.0f) packetDistance[pixels[k]] = hitDistance(pixels[k], list[k], tHit[k]);
   }
 };
 
@@ -344,7 +391,38 @@ NativeStageMs NativeMirrorTrace::run(int threads) {
   return ms;
 }
 
+double NativeMirrorTrace::runPackets(int threads) {
+  Impl& m = *impl_;
+  if (!packetTraceSupported()) throw std::runtime_error("native packet trace: needs a CPU with AVX-512 (F, DQ, BW, VL)");
+  if (int(m.levels.size()) > kMaxPacketLevels) throw std::invalid_argument("native packet trace: image too large");
+  constexpr int kRows = 8;
+  const auto start = Clock::now();
+  const size_t planeBytes = m.distance.size() * kPlaneFloats * sizeof(float);
+  m.planeStorage.resize((planeBytes + 64) / sizeof(float));
+  void* storage = m.planeStorage.data();
+  size_t space = m.planeStorage.size() * sizeof(float);
+  m.planes = static_cast<float*>(std::align(64, planeBytes, storage, space));
+#if defined(SSRCL_PACKET_TRACE)  // as in tracePacketRows
+  parallelRows(m.h, threads, [&m](int y) {
+    packPlanes(&m.positions[0].x, &m.normals[0].x, m.thickness.data(), size_t(y) * m.w, m.w, m.planes);
+  });
+#endif
+  parallelRows((m.h + kRows - 1) / kRows, threads,
+               [&m](int b) { m.tracePacketRows(b * kRows, std::min(m.h, (b + 1) * kRows)); });
+  return msSince(start);
+}
+
+bool packetTraceSupported() {
+#if defined(SSRCL_PACKET_TRACE)
+  return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
+         __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512vl");
+#else
+  return false;
+#endif
+}
+
 const std::vector<float>& NativeMirrorTrace::distance() const { return impl_->distance; }
+const std::vector<float>& NativeMirrorTrace::packetDistance() const { return impl_->packetDistance; }
 long long NativeMirrorTrace::rays() const { return impl_->rays; }
 
 }  // namespace ssrcl::bench

@@ -39,8 +39,12 @@ class NativeMirrorTrace {
 
   // One timed run of the three stages on `threads` threads.
   NativeStageMs run(int threads);
-  // Per pixel, after run(): the mirror hit's view-space distance, 0 where none (as "distance").
+  // After run(): the trace again, 16 rays per instruction (bench/packet_hiz_trace), on `threads`
+  // threads; its milliseconds. Only where packetTraceSupported().
+  double runPackets(int threads);
+  // Per pixel, after run() / runPackets(): the mirror hit's view-space distance, 0 where none (as "distance").
   const std::vector<float>& distance() const;
+  const std::vector<float>& packetDistance() const;
   long long rays() const;
 
  private:

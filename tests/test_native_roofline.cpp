@@ -1,23 +1,32 @@
 // The OpenCL mirror pass against the native C++ implementation of the same rays
 // (bench/native_mirror_trace, the roofline of `ssrcl bench --roofline`): written separately from
-// the kernels, same float arithmetic, so every pixel's hit must agree but for float ties.
+// the kernels, same float arithmetic, so every pixel's hit must agree but for float ties. The
+// native trace's packet form (bench/packet_hiz_trace, 16 rays in AVX-512 lanes) against its scalar
+// form, the same way.
 #include <gtest/gtest.h>
 
 #include "native_mirror_trace.hpp"
+#include "packet_hiz_trace.hpp"
 #include "scenes/analytic_scene.hpp"
 #include "ssrcl/ssrcl.hpp"
 #include "support/test_device.hpp"
 
 namespace {
 
-class NativeRoofline : public testing::TestWithParam<const char*> {};
-
-TEST_P(NativeRoofline, HitsAgreeWithOpenCl) {
+class NativeRoofline : public testing::TestWithParam<const char*> {
+ protected:
   const ssrcl::test::Scene scene = ssrcl::test::makeScene(GetParam());
   const ssrcl::Camera camera = ssrcl::test::makeCamera(scene.view, 320, 180);
   const ssrcl::GBuffer g = ssrcl::test::renderGBuffer(scene, camera);
   const ssrcl::TraceSettings settings = ssrcl::bench::nativeMirrorSettings();
+};
 
+void expectAgreement(const ssrcl::bench::HitAgreement& hits) {
+  ASSERT_GT(hits.hitPixels, 1000);  // the scene reflects something: the comparison means something
+  EXPECT_LE(hits.disagreeing, hits.hitPixels / 1000) << hits.disagreeing << " of " << hits.hitPixels;
+}
+
+TEST_P(NativeRoofline, HitsAgreeWithOpenCl) {
   ssrcl::Pipeline p(ssrcl::test::testDevice());
   p.setGBuffer(g);
   p.setCamera(camera);
@@ -28,9 +37,15 @@ TEST_P(NativeRoofline, HitsAgreeWithOpenCl) {
   native.run(2);
 
   EXPECT_EQ(native.rays(), p.stageTimes().tracedRays);
-  const auto hits = ssrcl::bench::compareHitDistances(native.distance(), p.output("distance").data);
-  ASSERT_GT(hits.hitPixels, 1000);  // the scene reflects something: the comparison means something
-  EXPECT_LE(hits.disagreeing, hits.hitPixels / 1000) << hits.disagreeing << " of " << hits.hitPixels;
+  expectAgreement(ssrcl::bench::compareHitDistances(native.distance(), p.output("distance").data));
+}
+
+TEST_P(NativeRoofline, PacketHitsAgreeWithScalar) {
+  if (!ssrcl::bench::packetTraceSupported()) GTEST_SKIP() << "this CPU has no AVX-512";
+  ssrcl::bench::NativeMirrorTrace native(g, camera, settings);
+  native.run(2);
+  native.runPackets(2);
+  expectAgreement(ssrcl::bench::compareHitDistances(native.packetDistance(), native.distance()));
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, NativeRoofline, testing::Values("spheres_on_mirror", "mirror_wall", "half_sky"));

@@ -6,6 +6,7 @@
 
 #include "device_copy_time.hpp"
 #include "native_mirror_trace.hpp"
+#include "packet_hiz_trace.hpp"
 #include "ssrcl/pipeline.hpp"
 
 namespace ssrcl::cli {
@@ -27,7 +28,8 @@ RooflineResult runRoofline(const Device& device, const BenchInput& input, int re
   p.execute();  // warm-up: kernel compilation, first touch
   native.run(r.threads);
   std::vector<std::vector<double>> cl(3), nat(3);
-  std::vector<double> copy;
+  std::vector<double> copy, packets;
+  r.packets = bench::packetTraceSupported();
   // Alternating, so both see the same load on a shared machine.
   for (int k = 0; k < repetitions; ++k) {
     p.execute();
@@ -40,6 +42,7 @@ RooflineResult runRoofline(const Device& device, const BenchInput& input, int re
     nat[0].push_back(n.setup);
     nat[1].push_back(n.hzb);
     nat[2].push_back(n.trace);
+    if (r.packets) packets.push_back(native.runPackets(r.threads));
     copy.push_back(depthCopy.run());
   }
   for (size_t s = 0; s < 3; ++s) {
@@ -49,8 +52,18 @@ RooflineResult runRoofline(const Device& device, const BenchInput& input, int re
   r.depthCopy = stageStats(copy);
   r.rays = native.rays();
   r.hits = bench::compareHitDistances(native.distance(), p.output("distance").data);
+  if (r.packets) {
+    r.packetTrace = stageStats(packets);
+    r.packetHits = bench::compareHitDistances(native.packetDistance(), native.distance());
+  }
   return r;
 }
+
+namespace {
+double agreedPercent(const bench::HitAgreement& h) {
+  return h.hitPixels ? 100.0 * (h.hitPixels - h.disagreeing) / h.hitPixels : 100.0;
+}
+}  // namespace
 
 void printRoofline(std::ostream& out, const std::vector<RooflineResult>& results) {
   out << "\nNative roofline (mirror rays of every reflecting pixel, constant thickness, Hi-Z; median ms):\n";
@@ -70,10 +83,18 @@ void printRoofline(std::ostream& out, const std::vector<RooflineResult>& results
             << " Mrays/s)";
       out << "\n";
     }
-    out << "    hits agree on " << std::setprecision(4)
-        << (r.hits.hitPixels ? 100.0 * (r.hits.hitPixels - r.hits.disagreeing) / r.hits.hitPixels : 100.0)
-        << "% of " << r.hits.hitPixels
+    out << "    hits agree on " << std::setprecision(4) << agreedPercent(r.hits) << "% of " << r.hits.hitPixels
         << " pixels hit by either\n";
+    const double cl = r.opencl[2].medianMs, scalar = r.native[2].medianMs, simd = r.packetTrace.medianMs;
+    if (!r.packets) {
+      out << "    SIMD native: not run (needs AVX-512)\n";
+      continue;
+    }
+    out << "    trace, SIMD native (16 rays per AVX-512 instruction) " << std::setprecision(2) << simd << " ms ("
+        << std::setprecision(1) << r.rays / (simd * 1e3) << " Mrays/s)  OpenCL / SIMD native " << std::setprecision(2)
+        << (simd > 0 ? cl / simd : 0.0) << "  scalar / SIMD native " << (simd > 0 ? scalar / simd : 0.0) << "\n";
+    out << "    SIMD and scalar native hits agree on " << std::setprecision(4) << agreedPercent(r.packetHits) << "% of "
+        << r.packetHits.hitPixels << " pixels hit by either\n";
   }
 }
 

@@ -21,6 +21,11 @@ struct RooflineResult {
   std::vector<StageStats> opencl, native;    // per stage, milliseconds
   StageStats depthCopy;                      // clEnqueueCopyBuffer of the depth buffer, same run
   bench::HitAgreement hits;
+  // The trace again with 16 rays per AVX-512 instruction (bench/packet_hiz_trace), where the CPU
+  // has it; its hits against the scalar native ones.
+  bool packets = false;
+  StageStats packetTrace;
+  bench::HitAgreement packetHits;
 };
 
 RooflineResult runRoofline(const Device& device, const BenchInput& input, int repetitions);
