@@ -11,8 +11,24 @@
 
 namespace ssrcl {
 
+namespace {
+
+// The nearest and farthest surface of a planar depth pass (INFINITY and 0 without any).
+struct SurfaceRange {
+  float nearest = INFINITY, farthest = 0.0f;
+};
+
+SurfaceRange surfaceRange(const Image& planarDepth) {
+  SurfaceRange r;
+  for (float d : planarDepth.data)
+    if (detail::isSurfaceDepth(d)) r.nearest = std::min(r.nearest, d), r.farthest = std::max(r.farthest, d);
+  return r;
+}
+
+}  // namespace
+
 void setClipPlanes(Camera& camera, double n, double f) {
-  const bool perspective = camera.projection[2][3] != 0.0;  // last row 0,0,-1,0
+  const bool perspective = detail::isPerspective(camera);
   camera.nearPlane = n;
   camera.farPlane = f;
   const double rowFar = perspective || std::isfinite(f) ? f : 1e10;
@@ -31,20 +47,15 @@ void setClipPlanes(Camera& camera, double n, double f) {
 // camera. Far: infinity, but for an orthographic camera, whose depth row has no infinite form
 // (a far plane of 1e10 squeezes every depth into float rounding), twice the farthest surface.
 void fitClipPlanes(Camera& camera, const Image& planarDepth) {
-  float nearest = INFINITY, farthest = 0.0f;
-  for (float d : planarDepth.data)
-    if (detail::isSurfaceDepth(d)) nearest = std::min(nearest, d), farthest = std::max(farthest, d);
-  const double n = std::isfinite(nearest) ? 0.5 * nearest : 1.0;
-  const bool perspective = camera.projection[2][3] != 0.0;
-  setClipPlanes(camera, n, perspective ? INFINITY : 2.0 * std::max(double(farthest), n));
+  const SurfaceRange r = surfaceRange(planarDepth);
+  const double n = std::isfinite(r.nearest) ? 0.5 * r.nearest : 1.0;
+  setClipPlanes(camera, n, detail::isPerspective(camera) ? INFINITY : 2.0 * std::max(double(r.farthest), n));
 }
 
 // Every surface must lie between the planes (a renderer clips what does not); 0.1% of slack
 // for depth converted from radial distances or positions in float.
 void checkClipPlanes(const Camera& camera, const Image& planarDepth, const std::string& cameraName) {
-  float nearest = INFINITY, farthest = 0.0f;
-  for (float d : planarDepth.data)
-    if (detail::isSurfaceDepth(d)) nearest = std::min(nearest, d), farthest = std::max(farthest, d);
+  const auto [nearest, farthest] = surfaceRange(planarDepth);
   const bool inside = nearest >= camera.nearPlane * (1.0 - 1e-3) && farthest <= camera.farPlane * (1.0 + 1e-3);
   if (inside || !std::isfinite(nearest)) return;
   std::ostringstream m;

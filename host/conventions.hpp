@@ -11,6 +11,8 @@ namespace ssrcl::detail {
 
 // Depth values that mean a surface: finite, positive, below Cycles' 1e10 background.
 inline bool isSurfaceDepth(float depth) { return depth > 0.0f && depth < 1e10f; }
+// A perspective projection's last row is 0,0,-1,0 (OpenGL layout); an orthographic one's 0,0,0,1.
+inline bool isPerspective(const Camera& camera) { return camera.projection[2][3] != 0.0; }
 
 // Planar depth from distances along each pixel's ray; values that mean no surface are kept.
 Image planarFromRadial(const Image& radial, const Camera& camera);

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <glm/glm.hpp>
 
+#include "conventions.hpp"
 #include "ssrcl/error.hpp"
 
 namespace ssrcl::detail {
@@ -168,9 +169,10 @@ void readClipPlanes(const Imf::Header& header, HeaderCamera& h) {
     if (n && f && *n > 0.0 && *f > *n) {
       // An orthographic depth row has no infinite form (1e10 squeezes every depth into float
       // rounding): with an infinite far plane fitClipPlanes sets both from the depth.
-      if (*f >= 1e10 && h.camera.projection[2][3] == 0.0) return;
-      setClipPlanes(h.camera, *n, *f < 1e10 ? *f : INFINITY);
-      if (h.reversed) setClipPlanes(*h.reversed, *n, *f < 1e10 ? *f : INFINITY);
+      const double farPlane = *f < 1e10 ? *f : INFINITY;
+      if (std::isinf(farPlane) && !detail::isPerspective(h.camera)) return;
+      setClipPlanes(h.camera, *n, farPlane);
+      if (h.reversed) setClipPlanes(*h.reversed, *n, farPlane);
       h.clipPlanesKnown = true;
       h.attributes += std::string(", ") + nearName + " + " + farName;
       return;
