@@ -59,10 +59,11 @@ struct Sample {
 };
 
 // Channel sets of a variant. Color and roughness are the original's, under the given names.
-std::vector<ExrChannel> baseChannels(const Sample& s, const std::string& color, const std::string& roughness) {
-  return {{color + "R", s.channel(s.g.color, 0)},
-          {color + "G", s.channel(s.g.color, 1)},
-          {color + "B", s.channel(s.g.color, 2)},
+std::vector<ExrChannel> baseChannels(const Sample& s, const std::string& color, const std::string& roughness,
+                                     const char* components = "RGB") {
+  return {{color + components[0], s.channel(s.g.color, 0)},
+          {color + components[1], s.channel(s.g.color, 1)},
+          {color + components[2], s.channel(s.g.color, 2)},
           {roughness, s.channel(s.g.roughness, 0)}};
 }
 
@@ -386,8 +387,10 @@ TEST_P(Conventions, RenderManPresetWithHeaderCamera) {
 // as Mantra names planes (N.x) and as a Houdini multi-part file holds them (parts C and N of
 // channels R, G, B: OpenImageIO issue 3593; where the depth part's channel is named is not in that
 // source, so depth is a bare `depth` here). Each reads to the original's pass; the multi-part
-// file's bare R, in two parts, is never read as colour. (RenderMan's "Z|z": test_io,
-// ChannelAlternatives.)
+// file's bare R, in two parts, is never read as colour. RenderMan 26's layout as Gaffer's tests read
+// it back (GafferHQ/gaffer python/IECoreRenderManTest/RendererTest.py, testEXRLayerNames: a colour
+// output NAME is written NAME.r, NAME.g, NAME.b), here Ci without `asrgba` and Nn, with RenderMan for
+// Blender's depth output name z_depth. (RenderMan's "Z|z": test_io, ChannelAlternatives.)
 TEST_P(Conventions, PresetLayoutAlternatives) {
   if (std::string(GetParam()) != "mirror") GTEST_SKIP() << "channel layouts do not depend on the scene";
   const Sample& s = sample();
@@ -405,6 +408,17 @@ TEST_P(Conventions, PresetLayoutAlternatives) {
   ssrcl::test::writeMultiPartExr(parts, s.w, s.h, {{"C", beauty}, {"N", normals}, {"depth", depth}}, houdini);
   expectSameAsOriginal(parts, "--renderer karma");
   expectRefused(parts, "--renderer karma --color-channels R,G,B", "'R' is in 2 parts", "'C.R'");
+
+  ExrOptions renderman;
+  renderman.editHeader = [&](Imf::Header& h) {
+    addStandardCamera(h, s, Projected::StandardNdc, s.camera, Imath::Box2i({0, 0}, {s.w - 1, s.h - 1}));
+  };
+  expectSameAsOriginal(variant("renderman26",
+                               baseChannels(s, "Ci.", "roughness", "rgb") +
+                                   std::vector<ExrChannel>{{"z_depth", s.channel(s.g.depth, 0)}} +
+                                   cameraNormals(s, "Nn.", "rgb", true),
+                               renderman),
+                       "--renderer renderman");
 }
 
 // Arnold's, as its files hold them (ArnoldFileHeaderCamera): planar Z, world N, worldToCamera +

@@ -11,8 +11,11 @@ const std::vector<RendererPreset>& presets() {
   static const std::vector<RendererPreset> all = {
       {"blender", "ViewLayer", "", "", "", DepthKind::Planar, NormalSpace::World},
       {"arnold", "", "R,G,B", "Z", "N.X,N.Y,N.Z", DepthKind::Planar, NormalSpace::World},
-      // ILM's driver names variable z "Z"; RenderMan 22's names every variable but r, g, b, a as itself.
-      {"renderman", "", "R,G,B", "Z|z", "Nn.x,Nn.y,Nn.z", DepthKind::Planar, NormalSpace::Camera},
+      // ILM's driver names variable z "Z"; RenderMan 22's names every variable but r, g, b, a as itself,
+      // a colour output NAME as NAME.r/.g/.b (RenderMan 26, Gaffer's tests), R,G,B,A under `asrgba`;
+      // RenderMan for Blender names its depth output z_depth.
+      {"renderman", "", "R,G,B|Ci.r,Ci.g,Ci.b", "Z|z|z_depth", "Nn.x,Nn.y,Nn.z|Nn.r,Nn.g,Nn.b", DepthKind::Planar,
+       NormalSpace::Camera},
       // Mantra's single-part planes (N.x), and Houdini's multi-part files: one part per render var,
       // channels R, G, B.
       {"karma", "", "R,G,B|C.R,C.G,C.B", "depth", "N.x,N.y,N.z|N.R,N.G,N.B", DepthKind::Planar, NormalSpace::World},
