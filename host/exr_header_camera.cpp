@@ -6,7 +6,9 @@
 #include <OpenEXR/ImfIntAttribute.h>
 #include <OpenEXR/ImfMatrixAttribute.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <glm/glm.hpp>
 
 #include "conventions.hpp"
@@ -99,6 +101,17 @@ std::optional<HeaderCamera> standardCamera(const Imf::Header& header, const Imat
   if (!projected) return std::nullopt;
   const glm::dmat4 fileCamera = fromImath(toCamera);
   const glm::dmat4 cameraToProjected = fromImath(*projected) * glm::inverse(fileCamera);
+  const std::string name = toNdc ? "worldToNDC" : "worldToScreen";
+  // Karma (Houdini Solaris, CPU and XPU, 2025) writes worldToNDC as a copy of worldToCamera
+  // (github.com/EmilDohne/cryptomatte-api, test/images/karma_*_solaris_*.exr): no projection, which
+  // would read as an orthographic camera two units wide.
+  double offIdentity = 0.0;
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r) offIdentity = std::max(offIdentity, std::abs(cameraToProjected[c][r] - (c == r)));
+  if (offIdentity < 1e-5)
+    throw Error(ErrorCode::InvalidInput, path + ": header attribute '" + name +
+                                             "' is the same matrix as 'worldToCamera': it holds no projection (as "
+                                             "Karma writes it); give --camera");
   const bool lookingDownMinusZ = cameraToProjected[2][3] < 0.0;  // w = -z: Houdini's camera space
   const glm::dvec4 w(cameraToProjected[0][3], cameraToProjected[1][3], cameraToProjected[2][3],
                      cameraToProjected[3][3]);
@@ -109,7 +122,6 @@ std::optional<HeaderCamera> standardCamera(const Imf::Header& header, const Imat
     toUnit[0][0] = 2.0, toUnit[3][0] = -1.0;  // x' = 2x - w
     toUnit[1][1] = -2.0, toUnit[3][1] = 1.0;  // y' = w - 2y
   }
-  const std::string name = toNdc ? "worldToNDC" : "worldToScreen";
   const auto reading = [&](const glm::dmat4& view) {
     return fromEyeToNdc(toUnit * fromImath(*projected) * glm::inverse(view), view, display,
                         path + ": header attribute '" + name + "'");
@@ -122,22 +134,37 @@ std::optional<HeaderCamera> standardCamera(const Imf::Header& header, const Imat
   return h;
 }
 
-// V-Ray: cameraTransform is camera-to-world (camera looking down its -z, y up), cameraFov the
-// horizontal field of view in degrees. Row- or column-vector storage is told apart by where the
-// translation sits.
+// V-Ray's camera frame in cameraTransform: x right, looking down -y, -z up (a quarter turn about
+// x from OpenGL's eye space). Columns: where eye x, y, z, w go.
+const glm::dmat4 kEyeToVray(1, 0, 0, 0, 0, 0, -1, 0, 0, 1, 0, 0, 0, 0, 0, 1);
+
+// V-Ray: cameraTransform is camera-to-world in the frame above, cameraFov the horizontal field of
+// view in degrees. Both from V-Ray files: a V-Ray for Maya 3.6 header (Psyop/Cryptomatte
+// sample_images/cornellBox_CryptoWildcard.0001.exr: rows (1 0 0, 0 0 1, 0 -1 0), translation
+// (0 5 20), i.e. Maya's default front view at (0, 5, 20) looking down world -z with y up; cameraFov
+// 54.4322 = 2 atan(cameraAperture 36 / (2 cameraFocalLength 35))), and a V-Ray 3.6 render whose
+// world-position pass lies 100% in front of the camera read so and lands on its pixels near the
+// frame's centre (tests/test_conventions.cpp, VrayFileHeaderCamera). Row- or column-vector storage
+// is told apart by where the translation sits.
 std::optional<HeaderCamera> vrayCamera(const Imf::Header& header, const PixelBox& display, const std::string& path) {
   const Imath::M44f* transform = matrix(header, "cameraTransform");
   const std::optional<double> fov = number<Imf::FloatAttribute>(header, "cameraFov");
   if (!transform || !fov) return std::nullopt;
-  glm::dmat4 cameraToWorld = fromImath(*transform);
+  glm::dmat4 vrayToWorld = fromImath(*transform);
   const bool columnStored = (*transform)[3][0] == 0.f && (*transform)[3][1] == 0.f && (*transform)[3][2] == 0.f &&
                             ((*transform)[0][3] != 0.f || (*transform)[1][3] != 0.f || (*transform)[2][3] != 0.f);
-  if (columnStored) cameraToWorld = glm::transpose(cameraToWorld);
-  const std::optional<double> projection = number<Imf::IntAttribute>(header, "cameraProjection");
-  if (projection && *projection != 0)
-    throw Error(ErrorCode::InvalidInput, path + ": header attribute 'cameraProjection' is " +
-                                             std::to_string(int(*projection)) +
+  if (columnStored) vrayToWorld = glm::transpose(vrayToWorld);
+  const glm::dmat4 cameraToWorld = vrayToWorld * kEyeToVray;
+  // An int in V-Ray's own files; a float once a compositor has rewritten the header (V-Ray 3.6
+  // passes saved by Fusion).
+  std::optional<double> projection = number<Imf::IntAttribute>(header, "cameraProjection");
+  if (!projection) projection = number<Imf::FloatAttribute>(header, "cameraProjection");
+  if (projection && *projection != 0) {
+    char value[32];
+    std::snprintf(value, sizeof value, "%g", *projection);
+    throw Error(ErrorCode::InvalidInput, path + ": header attribute 'cameraProjection' is " + value +
                                              ", not 0 (perspective), the only V-Ray projection read; give --camera");
+  }
   if (!(*fov > 0.0 && *fov < 180.0))
     throw Error(ErrorCode::InvalidInput, path + ": header attribute 'cameraFov' must be in (0, 180) degrees");
   const double focal = 1.0 / std::tan(*fov * M_PI / 360.0);

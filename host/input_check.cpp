@@ -127,7 +127,7 @@ InputCheckReport checkInputConventions(const GBuffer& g, const GBufferSource& so
 
   std::vector<Hypothesis> hypotheses;
   for (const auto& [name, planar] : depths) {
-    for (NormalSpace space : {NormalSpace::World, NormalSpace::Camera, NormalSpace::CameraGL})
+    for (NormalSpace space : {NormalSpace::World, NormalSpace::Camera, NormalSpace::CameraGL, NormalSpace::CameraCV})
       hypotheses.push_back({name, normalSpaceName(space), &planar, space, -1});
     // The declared space with one axis flipped: a pass no option converts.
     for (int axis = 0; axis < 3; ++axis)

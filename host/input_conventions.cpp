@@ -15,6 +15,8 @@ const char* normalSpaceName(NormalSpace space) {
       return "camera";
     case NormalSpace::CameraGL:
       return "camera-gl";
+    case NormalSpace::CameraCV:
+      return "camera-cv";
   }
   return "?";
 }

@@ -5,7 +5,8 @@
 
 namespace ssrcl::detail {
 
-// OpenEXR/RenderMan camera space differs from OpenGL's eye space by the sign of z alone.
+// OpenEXR/RenderMan camera space differs from OpenGL's eye space by the sign of z alone, OpenCV's
+// by the signs of y and z (a half turn about x).
 glm::dvec3 normalToEye(const glm::dvec3& normal, NormalSpace space, const glm::dmat3& worldToEye) {
   switch (space) {
     case NormalSpace::World:
@@ -14,6 +15,8 @@ glm::dvec3 normalToEye(const glm::dvec3& normal, NormalSpace space, const glm::d
       return {normal.x, normal.y, -normal.z};
     case NormalSpace::CameraGL:
       return normal;
+    case NormalSpace::CameraCV:
+      return {normal.x, -normal.y, -normal.z};
   }
   return normal;
 }

@@ -33,6 +33,7 @@ GBufferSource GBufferInputOptions::sourceFor(const std::string& file) const {
   s.normalSpace = normalSpace.empty() ? preset.normalSpace
                   : normalSpace == "camera"    ? NormalSpace::Camera
                   : normalSpace == "camera-gl" ? NormalSpace::CameraGL
+                  : normalSpace == "camera-cv" ? NormalSpace::CameraCV
                                                : NormalSpace::World;
   form.nameMaterialPasses(s);
   return s;
@@ -72,9 +73,10 @@ void addChannelOptions(CLI::App& cmd, GBufferInputOptions& o) {
       ->group(in)
       ->check(CLI::IsMember({"planar", "radial"}));
   cmd.add_option("--normal-space", o.normalSpace,
-                 "world; camera: x right, y up, +z forward (OpenEXR/RenderMan); camera-gl: x right, y up, -z forward")
+                 "world; camera: x right, y up, +z forward (OpenEXR/RenderMan); camera-gl: x right, y up, -z forward; "
+                 "camera-cv: x right, y down, +z forward (V-Ray for Maya)")
       ->group(in)
-      ->check(CLI::IsMember({"world", "camera", "camera-gl"}));
+      ->check(CLI::IsMember({"world", "camera", "camera-gl", "camera-cv"}));
   cmd.add_option("--roughness-channel", o.source.roughnessChannel, "Roughness channel name")->group(in);
   // Its range is the library's check (validateSettings).
   cmd.add_option("--roughness", o.roughness, "Constant roughness for every pixel instead of a channel")->group(in);

@@ -19,7 +19,8 @@ const std::vector<RendererPreset>& presets() {
       // Mantra's single-part planes (N.x), and Houdini's multi-part files: one part per render var,
       // channels R, G, B.
       {"karma", "", "R,G,B|C.R,C.G,C.B", "depth", "N.x,N.y,N.z|N.R,N.G,N.B", DepthKind::Planar, NormalSpace::World},
-      {"vray", "", "R,G,B", "Z", "normals.R,normals.G,normals.B", DepthKind::Planar, NormalSpace::CameraGL},
+      // A V-Ray for Maya 3.6 file's Normals element: normals.X/.Y/.Z, y down and +z forward.
+      {"vray", "", "R,G,B", "Z", "normals.X,normals.Y,normals.Z", DepthKind::Planar, NormalSpace::CameraCV},
   };
   return all;
 }

@@ -18,10 +18,12 @@ enum class DepthKind { Planar, Radial };
 //   World     world space (Blender, Arnold)
 //   Camera    OpenEXR/RenderMan camera space: x right, y up, +z the viewing direction (left-handed)
 //   CameraGL  x right, y up, -z the viewing direction (right-handed, OpenGL's eye space)
-enum class NormalSpace { World, Camera, CameraGL };
+//   CameraCV  x right, y down, +z the viewing direction (right-handed, OpenCV's; V-Ray for Maya's
+//             Normals render element)
+enum class NormalSpace { World, Camera, CameraGL, CameraCV };
 
-const char* depthKindName(DepthKind kind);        // "planar", "radial": the --depth-kind values
-const char* normalSpaceName(NormalSpace space);  // "world", "camera", "camera-gl"
+const char* depthKindName(DepthKind kind);       // "planar", "radial": the --depth-kind values
+const char* normalSpaceName(NormalSpace space);  // "world", "camera", "camera-gl", "camera-cv"
 
 // Where each G-buffer pass comes from. File fields left empty use `file`. Channel names are full
 // EXR names; empty means the default built from `layer` (Blender multilayer naming):
