@@ -29,10 +29,14 @@ __kernel void denoise(FilterParams params, __global const int* tile_list, __glob
       int q = qy * size.x + qx;
       float4 nq = normals[q];
       if (pixel_rays[q] == 0 || nq.w <= mirror_roughness) continue;
-      float w = exp(-(float)(dx * dx + dy * dy) / (2.0f * sigma2));
-      w *= exp(-fabs(positions[q].w - d) / (0.01f * d));                // same surface, depth-wise
-      w *= pow(fmax(dot(nr.xyz, nq.xyz), 0.0f), 64.0f);           // same orientation
-      w *= exp(-fabs(nq.w - nr.w) * 10.0f);                        // similar lobe width
+      // The Gaussian, same surface depth-wise, similar lobe width: one exp of their exponents' sum;
+      // same orientation: cos^64 by six squarings (PoCL's exp and pow are library calls, which took
+      // 86% of the filter's time: docs/BENCHMARKS.md "Resolve and filter").
+      float w = exp(-(float)(dx * dx + dy * dy) / (2.0f * sigma2) - fabs(positions[q].w - d) / (0.01f * d) -
+                    fabs(nq.w - nr.w) * 10.0f);
+      float cosine = fmax(dot(nr.xyz, nq.xyz), 0.0f);
+      for (int k = 0; k < 6; ++k) cosine *= cosine;
+      w *= cosine;
       float4 c = in_rgba[q];
       sum += w * c;
       weights += w;

@@ -15,11 +15,6 @@ inline float ggx_lambda(float3 w, float alpha) {
 
 inline float ggx_g1(float3 w, float alpha) { return w.z > 0.0f ? 1.0f / (1.0f + ggx_lambda(w, alpha)) : 0.0f; }
 
-// Height-correlated masking-shadowing.
-inline float ggx_g2(float3 o, float3 l, float alpha) {
-  return (o.z > 0.0f && l.z > 0.0f) ? 1.0f / (1.0f + ggx_lambda(o, alpha) + ggx_lambda(l, alpha)) : 0.0f;
-}
-
 // cos^2 (alpha^2 - 1) + 1 written as alpha^2 cos^2 + sin^2: exact as alpha -> 0.
 inline float ggx_d(float3 h, float alpha) {
   float a2 = alpha * alpha;

@@ -18,13 +18,52 @@
 // acc_radiance = (sum w c L, sum w c) and acc_weight = (sum w, sum w c d), which the first batch
 // starts. Both kernels run over the listed tiles only; the host clears the output elsewhere.
 
-// GGX BRDF * cosine for local view o and light l (normal +Z), without Fresnel.
-inline float ggx_brdf_cos(float3 o, float3 l, float alpha) {
-  float3 h = o + l;
-  float len = length(h);
-  if (!(len > 0.0f) || o.z <= 0.0f || l.z <= 0.0f) return 0.0f;
-  return ggx_d(h / len, alpha) * ggx_g2(o, l, alpha) / (4.0f * o.z);
+// What every tap of one glossy pixel shares: its local view o, alpha^2, 1 + 2 Lambda(o) and the
+// constant factor below. Computed once per pixel, so that a tap's BRDF * cosine / pdf costs two
+// square roots and one division, four taps to an instruction: a tap's divisions and square roots,
+// not its memory reads, are what the resolve costs on PoCL (docs/BENCHMARKS.md "Resolve and filter:
+// divisions and transcendentals").
+typedef struct {
+  float3 o;
+  float a2, c, scale;
+} GgxLobe;
+
+inline GgxLobe ggx_lobe(float3 o, float alpha) {
+  GgxLobe lobe = {o, alpha * alpha, 1.0f + 2.0f * ggx_lambda(o, alpha), alpha * alpha / (2.0f * SSRCL_PI * o.z)};
+  return lobe;
 }
+
+// GGX BRDF * cosine (without Fresnel) over the pdf each ray was drawn with, for four rays in
+// float4 lanes (PoCL keeps OpenCL vectors packed: one vdivps or vsqrtps serves four taps; its
+// work-item loop is not vectorised). l = (lx, ly, lz) local, of length len (not normalised: no
+// division). D(h) G2(o, l) / (4 o.z pdf) (ggx_d, ggx_lambda in ggx.cl; G2 height-correlated)
+// with the half vector left unnormalised too, H = o len + l, both factors of degree 0 in H and l:
+//   D = a2 |H|^4 / (pi K^2),  K = a2 Hz^2 + Hx^2 + Hy^2
+//   G2 = 1 / (1 + Lambda(o) + Lambda(l)) = 2 lz / (c lz + sqrt(lz^2 + a2 (lx^2 + ly^2)))
+// so the weight is scale |H|^4 lz / (K^2 (c lz + s) pdf). 0 below the surface (G2 = 0 there);
+// where H vanishes 0 / 0, which the caller drops as not finite.
+inline float4 ggx_reuse_weights(GgxLobe lobe, float4 lx, float4 ly, float4 lz, float4 len, float4 pdf) {
+  float4 hx = lobe.o.x * len + lx, hy = lobe.o.y * len + ly, hz = lobe.o.z * len + lz;
+  float4 h2 = hx * hx + hy * hy + hz * hz;
+  float4 k = lobe.a2 * hz * hz + (hx * hx + hy * hy);
+  float4 s = sqrt(lz * lz + lobe.a2 * (lx * lx + ly * ly));
+  float4 w = lobe.scale * (h2 * h2 * lz) / (k * k * (lobe.c * lz + s) * pdf);
+  return select((float4)(0.0f), w, lz > 0.0f);
+}
+
+// Records base + slot.s0 .. s3, transposed: .s0123 their x, .s4567 y, .s89ab z, .scdef w.
+inline float16 record_lanes(__global const float4* records, size_t base, int4 slot) {
+  return (float16)(records[base + slot.s0], records[base + slot.s1], records[base + slot.s2], records[base + slot.s3])
+      .s048c159d26ae37bf;
+}
+
+inline float lane_sum(float4 v) { return (v.s0 + v.s1) + (v.s2 + v.s3); }
+
+#if SSRCL_VIEWS
+inline void add_source(__global float* sources, __global const uchar* ray_state, size_t r, float found) {
+  if (found > 0.0f) sources[ray_state[r] >> SSRCL_RAY_SOURCE_SHIFT] += found;
+}
+#endif
 
 // Neighbours must be the same surface for their rays to stand for this pixel's: similar depth
 // (relative) and normal.
@@ -79,9 +118,12 @@ __kernel void resolve_accumulate(ResolveParams params, __global const int* tile_
     float3 tx, ty;
     basis_from_normal(nr.xyz, &tx, &ty);
     float3 ol = (float3)(dot(-v, tx), dot(-v, ty), dot(-v, nr.xyz));
-    float alpha = fmax(roughness_to_alpha(nr.w, SSRCL_ROUGHNESS_MAPPING), 1e-4f);
-    for (int dy = -reuse_radius; dy <= reuse_radius; ++dy) {
-      for (int dx = -reuse_radius; dx <= reuse_radius; ++dx) {
+    GgxLobe lobe = ggx_lobe(ol, fmax(roughness_to_alpha(nr.w, SSRCL_ROUGHNESS_MAPPING), 1e-4f));
+    // Seen from below the lobe weighs no ray (G2 = 0): nothing accumulates.
+    const int radius = ol.z > 0.0f ? reuse_radius : -1;
+    const float inv_depth = 1.0f / positions[i].w;
+    for (int dy = -radius; dy <= radius; ++dy) {
+      for (int dx = -radius; dx <= radius; ++dx) {
         int qx = x + dx, qy = y + dy;
         if (qx < 0 || qy < 0 || qx >= size.x || qy >= size.y) continue;
         int q = qy * size.x + qx;
@@ -94,24 +136,37 @@ __kernel void resolve_accumulate(ResolveParams params, __global const int* tile_
         // cover the shares evenly (a rank-1 lattice).
         int parts = q == i ? 1 : min(SSRCL_RESOLVE_RAY_STRIDE, count);
         int part = (x + 2 * y + 3 * qx + qy) % parts;
-        for (int s = part * count / parts; s < (part + 1) * count / parts; ++s) {
-          size_t r = (size_t)q * batch_size + s;
-          float4 rad = ray_radiance[r];
-          if (!(rad.w > 0.0f)) continue;  // a mirror ray (delta) or one never traced
-          float4 h = ray_hit[r];
-          bool hit = h.w >= 0.0f;
-          float3 l = hit ? normalize(h.xyz - p) : h.xyz;
-          float3 ll = (float3)(dot(l, tx), dot(l, ty), dot(l, nr.xyz));
-          float w = ggx_brdf_cos(ol, ll, alpha) / rad.w;
-          if (!(w > 0.0f) || !isfinite(w)) continue;
-          weight.x += w;
-          if (hit) {
-            radiance += (float4)(rad.xyz * (w * h.w), w * h.w);
-            weight.y += w * h.w * length(h.xyz - p);
+        // Four rays at a time; lanes past the share's end repeat its last ray and take no weight.
+        const int end = (part + 1) * count / parts;
+        const size_t base = (size_t)q * batch_size;
+        for (int s = part * count / parts; s < end; s += 4) {
+          int4 lane = (int4)(s) + (int4)(0, 1, 2, 3), slot = min(lane, end - 1);
+          float16 hit_rec = record_lanes(ray_hit, base, slot), rad = record_lanes(ray_radiance, base, slot);
+          float4 pdf = rad.scdef, confidence = hit_rec.scdef;
+          int4 hit = confidence >= 0.0f;
+          float4 dx = hit_rec.s0123 - p.x, dy = hit_rec.s4567 - p.y, dz = hit_rec.s89ab - p.z;
+          float4 distance = sqrt(dx * dx + dy * dy + dz * dz);
+          // Toward the hit in units of this pixel's depth (the weight is of degree 5 in it: near 1
+          // whatever the scene's unit, far from float's range), or a miss's direction as recorded.
+          float4 lx = select(hit_rec.s0123, dx * inv_depth, hit), ly = select(hit_rec.s4567, dy * inv_depth, hit),
+                 lz = select(hit_rec.s89ab, dz * inv_depth, hit), len = select((float4)(1.0f), distance * inv_depth, hit);
+          float4 w = ggx_reuse_weights(lobe, lx * tx.x + ly * tx.y + lz * tx.z, lx * ty.x + ly * ty.y + lz * ty.z,
+                                       lx * nr.x + ly * nr.y + lz * nr.z, len, pdf);
+          // pdf 0: a mirror ray (delta) or one never traced; their records' colours may be anything.
+          int4 take = lane < end && pdf > 0.0f && w > 0.0f && isfinite(w), found = take && hit;
+          w = select((float4)(0.0f), w, take);
+          float4 wc = select((float4)(0.0f), w * confidence, found);
+          weight.x += lane_sum(w);
+          radiance += (float4)(lane_sum(select((float4)(0.0f), rad.s0123 * wc, found)),
+                               lane_sum(select((float4)(0.0f), rad.s4567 * wc, found)),
+                               lane_sum(select((float4)(0.0f), rad.s89ab * wc, found)), lane_sum(wc));
+          weight.y += lane_sum(select((float4)(0.0f), wc * distance, found));
 #if SSRCL_VIEWS
-            sources[ray_state[r] >> SSRCL_RAY_SOURCE_SHIFT] += w * h.w;
+          add_source(sources, ray_state, base + slot.s0, wc.s0);
+          add_source(sources, ray_state, base + slot.s1, wc.s1);
+          add_source(sources, ray_state, base + slot.s2, wc.s2);
+          add_source(sources, ray_state, base + slot.s3, wc.s3);
 #endif
-          }
         }
       }
     }
