@@ -3,7 +3,8 @@
 namespace ssrcl::detail {
 
 void SetupStage::configure(Device::Impl& device) {
-  kernel_ = cl::Kernel(device.program({"ssrcl_shared.h", "common.cl", "color_lookup.cl", "setup.cl"}), "setup");
+  kernel_ = cl::Kernel(
+      device.program({"ssrcl_shared.h", "common.cl", "color_lookup.cl", "surface_plane.cl", "setup.cl"}), "setup");
 }
 
 void SetupStage::plan(DeviceBuffers& buffers, const FrameShape& frame, int colorChannels, bool roughnessImage) {
@@ -20,14 +21,14 @@ void SetupStage::plan(DeviceBuffers& buffers, const FrameShape& frame, int color
   buffers.add(rayList, pixels * sizeof(cl_int));
   buffers.add(tileList, size_t(frame.tilesX) * frame.tilesY * sizeof(cl_int));
   buffers.add(counts, SSRCL_COUNTERS * sizeof(cl_int));
-  buffers.add(thickness, pixels * sizeof(float));
+  buffers.add(planes, pixels * sizeof(cl_float4));
 }
 
 void SetupStage::bind(const cl::Buffer& hzb, const cl::Buffer& colorPyramid) {
   // Argument 0 is the parameter block, set at each enqueue. HZB and colour level 0 start at
   // offset 0 of their buffers.
   bindArgs(kernel_, 1, colorIn_, depthIn_, normalIn_, roughnessIn_, positions, hzb, normals, colorPyramid, pixelRays,
-           rayList, tileList, counts, thickness);
+           rayList, tileList, counts, planes);
 }
 
 SetupParams SetupStage::params(const FrameShape& frame, const CameraConstants& camera, const TraceSettings& s,

@@ -1,7 +1,7 @@
 #pragma once
 // Setup (kernels/setup.cl): uploads the passes and turns them into what tracing needs: view-space
-// points and normals, level 0 of the HZB and colour pyramids, ray counts and the lists of pixels
-// and tiles to work on.
+// points and normals, the surface planes the trace tests, level 0 of the HZB and colour pyramids,
+// ray counts and the lists of pixels and tiles to work on.
 #include "ssrcl/pipeline.hpp"
 #include "stage_support.hpp"
 
@@ -32,7 +32,7 @@ class SetupStage {
   cl::Buffer positions;  // view-space point, planar depth in w (SSRCL_NO_SURFACE: none)
   cl::Buffer normals;    // view-space normal, roughness in w
   cl::Buffer pixelRays, rayList, tileList, counts;
-  cl::Buffer thickness;  // per pixel, along its normal (kernels/thickness.cl refines it)
+  cl::Buffer planes;  // surface plane over thickness, the trace's hit test (kernels/surface_plane.cl)
 
  private:
   FrameShape frame_;

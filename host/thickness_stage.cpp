@@ -5,7 +5,8 @@ namespace ssrcl::detail {
 void ThicknessStage::configure(Device::Impl& device, const TraceSettings& s) {
   enabled_ = s.thicknessModel == ThicknessModel::Adaptive;
   if (enabled_)
-    kernel_ = cl::Kernel(device.program({"ssrcl_shared.h", "common.cl", "thickness.cl"}), "surface_thickness");
+    kernel_ = cl::Kernel(device.program({"ssrcl_shared.h", "common.cl", "surface_plane.cl", "thickness.cl"}),
+                         "surface_thickness");
 }
 
 void ThicknessStage::plan(DeviceBuffers& buffers, const FrameShape& frame) {
@@ -14,7 +15,7 @@ void ThicknessStage::plan(DeviceBuffers& buffers, const FrameShape& frame) {
 }
 
 void ThicknessStage::bind(const SetupStage& setup) {
-  if (enabled_) bindArgs(kernel_, 1, setup.positions, rowRuns_, setup.thickness);
+  if (enabled_) bindArgs(kernel_, 1, setup.positions, rowRuns_, setup.planes);
 }
 
 void ThicknessStage::enqueue(cl::CommandQueue& q, const TraceSettings& s, StageEvents& events) {

@@ -1,6 +1,7 @@
 #pragma once
 // Adaptive surface thickness (kernels/thickness.cl): each pixel's thickness from the visible extent
-// of its surface along its row and column. Runs only with ThicknessModel::Adaptive.
+// of its surface along its row and column, applied to setup's surface planes. Runs only with
+// ThicknessModel::Adaptive.
 #include "setup_stage.hpp"
 
 namespace ssrcl::detail {

@@ -28,8 +28,9 @@ void TraceStage::configure(Device::Impl& device, const TraceSettings& s, bool ha
   std::vector<std::string> defines = {tracerDefine(s.tracer), roughnessMappingDefine(s.roughnessMapping),
                                       std::string("SSRCL_COUNT_WORK=") + (s.countWork ? "1" : "0")};
   if (views) defines.push_back("SSRCL_VIEWS=1");  // only then: programs without views stay as they were
-  const cl::Program& program =
-      device.program({"ssrcl_shared.h", "common.cl", "sequence.cl", "ggx.cl", "color_lookup.cl", "trace.cl"}, defines);
+  const cl::Program& program = device.program(
+      {"ssrcl_shared.h", "common.cl", "sequence.cl", "ggx.cl", "color_lookup.cl", "surface_plane.cl", "trace.cl"},
+      defines);
   kernel_ = cl::Kernel(program, "trace_rays");
   batch_ = s.samplesPerPixel;
 }
@@ -49,7 +50,7 @@ void TraceStage::plan(DeviceBuffers& buffers, const FrameShape& frame) {
 
 void TraceStage::bind(const SetupStage& setup, const HzbStage& hzb, const ColorPyramidStage& colors) {
   bindArgs(kernel_, 1, hzb.hzb, hzb.levels, setup.positions, setup.normals, setup.rayList, setup.pixelRays,
-           setup.thickness, workCounters_, colors.pyramid, baseIn_, specularIn_, rayHit, rayRadiance,
+           setup.planes, workCounters_, colors.pyramid, baseIn_, specularIn_, rayHit, rayRadiance,
            rayState);
 }
 

@@ -34,7 +34,8 @@ void ViewStage::validate(const ViewSource& view, int index, const TraceSettings&
 
 void ViewStage::configure(Device::Impl& device, const TraceSettings& s, size_t viewCount) {
   program_ = device.program(
-      {"ssrcl_shared.h", "common.cl", "sequence.cl", "ggx.cl", "color_lookup.cl", "trace.cl", "view_trace.cl"},
+      {"ssrcl_shared.h", "common.cl", "sequence.cl", "ggx.cl", "color_lookup.cl", "surface_plane.cl", "trace.cl",
+       "view_trace.cl"},
       {tracerDefine(s.tracer), roughnessMappingDefine(s.roughnessMapping), "SSRCL_COUNT_WORK=0", "SSRCL_VIEWS=1"});
   units_.resize(viewCount);
   for (auto& unit : units_) {
@@ -90,7 +91,7 @@ void ViewStage::bind(cl::CommandQueue& q, const Camera& main, const std::vector<
     u.hzb.bind(q);
     u.colors.bind(u.hzb);
     bindArgs(u.kernel, 1, cameras_, setup.positions, setup.normals, setup.rayList, setup.pixelRays, u.hzb.hzb,
-             u.hzb.levels, u.setup.positions, u.setup.normals, u.setup.thickness, u.colors.pyramid, trace.rayHit,
+             u.hzb.levels, u.setup.positions, u.setup.normals, u.setup.planes, u.colors.pyramid, trace.rayHit,
              trace.rayRadiance, trace.rayState);
   }
   if (!cameras.empty())

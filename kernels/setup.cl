@@ -1,10 +1,11 @@
 // Setup: turn the renderer's passes into what tracing needs, and list the pixels worth a ray.
 // Writes each pixel's view-space surface point with its planar depth in w (SSRCL_NO_SURFACE for
-// sky/invalid), HZB level 0, view-space normals with roughness in w, sanitized color (colour
-// pyramid level 0), each pixel's ray count (0 for sky and pixels above max_roughness, 1 for
-// mirror-like ones), and lists the work: traced pixels in ray_list, and in tile_list the 8x8
-// tiles (this kernel's work-groups) holding a pixel that reflects. With `classify` 0 every pixel
-// and tile is listed instead (the unclassified baseline: the others' work-items exit at once).
+// sky/invalid), its surface plane for the trace (surface_plane.cl), HZB level 0, view-space
+// normals with roughness in w, sanitized color (colour pyramid level 0), each pixel's ray count
+// (0 for sky and pixels above max_roughness, 1 for mirror-like ones), and lists the work: traced
+// pixels in ray_list, and in tile_list the 8x8 tiles (this kernel's work-groups) holding a pixel
+// that reflects. With `classify` 0 every pixel and tile is listed instead (the unclassified
+// baseline: the others' work-items exit at once).
 //
 // A pixel's surface is the plane through its point with its normal. HZB level 0 is the nearest
 // depth of that plane over the pixel's square (its centre depth for invalid normals), so the
@@ -68,7 +69,7 @@ __kernel void setup(SetupParams params, __global const float* color_in,
                     __global float4* position_out, __global float* hzb_out, __global float4* normal_out,
                     __global float4* color_out,
                     __global int* pixel_rays, __global int* ray_list, __global int* tile_list,
-                    __global int* ray_count, __global float* thickness_out) {
+                    __global int* ray_count, __global float4* plane_out) {
   __local int group_count, group_base, group_rays, group_traced, group_reflecting;
   const int2 size = (int2)(params.width, params.height);
   const float16 normal_matrix = vload16(0, params.normal_matrix), inv_proj = vload16(0, params.inv_proj);
@@ -130,11 +131,9 @@ __kernel void setup(SetupParams params, __global const float* color_in,
     normal_out[i] = (float4)(nv, r);
     // Thickness is a depth along the viewing line; hits measure it along the normal, which is the
     // depth times |n.v| (near a silhouette a surface is thin along its normal however deep it is).
-    // The adaptive model's depth follows in kernels/thickness.cl.
-    float along_normal = fabs(dot(view_dir, nv));
-    thickness_out[i] = !surface                    ? 0.0f
-                      : params.adaptive_thickness ? along_normal
-                                                  : params.thickness_rel * d * along_normal;
+    // The adaptive model's depth, relative to d, follows in kernels/thickness.cl (1 until then).
+    float thickness_rel = params.adaptive_thickness ? 1.0f : params.thickness_rel;
+    plane_out[i] = surface ? surface_plane(p, nv, thickness_rel * d * fabs(dot(view_dir, nv))) : SSRCL_NO_PLANE;
     // Ray counts: 0 no reflection (sky, too rough), 1 mirror-like, -1 glossy but resolved from
     // its neighbours' rays only (strided tracing), else samples_per_pixel.
     // A normal facing away from the viewer (seen from behind) defines no reflection.

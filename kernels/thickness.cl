@@ -4,8 +4,9 @@
 // deep as they are wide, so each pixel's thickness follows the visible extent of the surface it
 // belongs to, along the unbroken run of surface through it on its row and on its column: a pole,
 // a can or a plank is as deep as its narrow side is wide, a floor's runs are long. Thickness =
-// scale * chord, kept within [min_rel, max_rel] of the pixel's depth. Setup left |n.v| in
-// `thickness`: the depth is multiplied by it (hits measure along the normal).
+// scale * chord, kept within [min_rel, max_rel] of the pixel's depth. Setup wrote each pixel's
+// surface plane (surface_plane.cl) for a thickness of the depth itself times |n.v| (hits measure
+// along the normal): it is rescaled by the thickness relative to the depth.
 //
 // The chord is the depth of the surface along the viewing line, estimated as a round object's
 // would be: a pixel at view-space distances a and b from the two ends of its run lies under a chord
@@ -36,9 +37,9 @@ inline bool joined(__global const float4* positions, int k, int length, int step
 }
 
 // One work-item per row (axis 0) or column (axis 1). Axis 0 writes each pixel's (run length, chord)
-// to `row`; axis 1 compares with its column's and writes the thickness.
+// to `row`; axis 1 compares with its column's and rescales the plane.
 __kernel void surface_thickness(ThicknessParams params, __global const float4* positions,
-                                __global float2* row, __global float* thickness) {
+                                __global float2* row, __global float4* planes) {
   const int2 size = (int2)(params.width, params.height);
   const int axis = params.axis;
   const float scale = params.scale, min_rel = params.min_rel, max_rel = params.max_rel;
@@ -75,7 +76,7 @@ __kernel void surface_thickness(ThicknessParams params, __global const float4* p
         float d = positions[i].w;
         float2 r = row[i];
         float depth_chord = fmin(fmax(chord, r.y), fmin(run, r.x));
-        if (d < SSRCL_NO_SURFACE) thickness[i] *= clamp(scale * depth_chord, min_rel * d, max_rel * d);
+        if (d < SSRCL_NO_SURFACE) planes[i] *= d / clamp(scale * depth_chord, min_rel * d, max_rel * d);
       }
     }
     start = k;

@@ -66,23 +66,22 @@ typedef struct {
   __global const float* hzb;
   __global const HzbLevel* levels;
   int level_count;
-  __global const float4* positions;
-  __global const float4* normals;
-  __global const float* thickness;  // per pixel, along its normal (setup.cl, thickness.cl)
+  __global const float4* planes;   // per pixel, scaled by its thickness (surface_plane.cl)
+  __global const float4* normals;  // roughness in w, for the hit's colour lookup
   int max_iterations;
   int iterations;  // work done by this ray, for the counting mode
-  int fetches;     // depth-buffer texels read (HZB texels, or a pixel's point and normal)
+  int fetches;     // depth-buffer texels read (HZB texels, or a pixel's plane record)
   // SSRCL_VIEWS only: the ray was seen in front of a surface; it then passed behind one it did not
   // hit (a ray that starts hidden, as from a surface a view sees from behind, is not held to it
   // until it comes into view); its hit was found within a surface's thickness.
   int seen, behind, thick;
 } TraceScene;
 
-// The ray's signed distance to a plane through p with normal n, times k = 1 / w (> 0 in front of
-// the camera): affine in t, so its sign and root are exact.
-inline float plane_side(const ScreenRay* r, float t, float3 p, float3 n) {
+// The ray's signed distance to a pixel's plane (n, dot(p, n)) / thickness, in thicknesses, times
+// k = 1 / w (> 0 in front of the camera): affine in t, so its sign and root are exact.
+inline float plane_side(const ScreenRay* r, float t, float4 plane) {
   float4 q = ray_q(r, t);
-  return dot(q.xyz, n) - q.w * dot(p, n);
+  return dot(q.xyz, plane.xyz) - q.w * plane.w;
 }
 
 // The exact test against one pixel's surface (the plane through its point with its normal) for
@@ -93,22 +92,21 @@ inline float plane_side(const ScreenRay* r, float t, float3 p, float3 n) {
 inline float hit_pixel(TraceScene* sc, const ScreenRay* ray, float3 dir, int2 cell, float t_in, float t_out,
                        bool* in_front) {
   cell = clamp(cell, (int2)(0, 0), sc->size - 1);
-  sc->fetches += 2;
-  int idx = cell.y * sc->size.x + cell.x;
-  float4 pc = sc->positions[idx];
+  ++sc->fetches;
+  float4 plane = sc->planes[cell.y * sc->size.x + cell.x];
   *in_front = true;
-  if (pc.w >= SSRCL_NO_SURFACE) {
+  if (plane.w == -INFINITY) {  // SSRCL_NO_PLANE
 #if SSRCL_VIEWS
     sc->seen = 1;  // over the sky
 #endif
     return -1.0f;
   }
-  float3 n = sc->normals[idx].xyz;
-  float g_in = plane_side(ray, t_in, pc.xyz, n), g_out = plane_side(ray, t_out, pc.xyz, n);
+  float g_in = plane_side(ray, t_in, plane), g_out = plane_side(ray, t_out, plane);
   *in_front = g_out > 0.0f;
-  if (!(dot(n, dir) < 0.0f)) return -1.0f;
+  if (!(dot(plane.xyz, dir) < 0.0f)) return -1.0f;
   if (g_in > 0.0f && g_out <= 0.0f) return t_in + (t_out - t_in) * (g_in / (g_in - g_out));
-  if (g_in <= 0.0f && -g_in / ray_q(ray, t_in).w <= sc->thickness[idx]) {
+  // Behind by at most one thickness: -g_in / k <= 1, k > 0.
+  if (g_in <= 0.0f && -g_in <= ray_q(ray, t_in).w) {
 #if SSRCL_VIEWS
     sc->thick = 1;
 #endif
@@ -285,7 +283,7 @@ inline void count_work(__global int* counters, int gid, const TraceScene* sc) {
 __kernel void trace_rays(TraceParams params, __global const float* hzb, __global const HzbLevel* levels,
                          __global const float4* positions, __global const float4* normals,
                          __global const int* ray_list, __global const int* pixel_rays,
-                         __global const float* thickness, __global int* work_counters,
+                         __global const float4* planes, __global int* work_counters,
                          __global const float4* color_pyramid, __global const float* base, __global const float* specular, __global float4* ray_hit,
                          __global float4* ray_radiance, __global uchar* ray_state) {
   const int2 size = (int2)(params.width, params.height);
@@ -323,7 +321,7 @@ __kernel void trace_rays(TraceParams params, __global const float* hzb, __global
   ray_hit[record] = (float4)(dir, -1.0f);
   ray_radiance[record] = (float4)(0.0f, 0.0f, 0.0f, pdf);
 
-  TraceScene sc = {size, hzb, levels, level_count, positions, normals, thickness, params.max_iterations, 0, 0};
+  TraceScene sc = {size, hzb, levels, level_count, planes, normals, params.max_iterations, 0, 0};
   ScreenRay ray;
   int2 cell;  // the pixel whose surface the ray hit; its colour is the hit's colour
   float t = trace_from(&sc, proj, near_plane, far_plane, linear_step, p, dir, &ray, &cell);

@@ -2,8 +2,8 @@
 // edge, a hit found after passing behind a surface the frame shows, which may hide what the ray
 // really meets, or a hit found within a surface's thickness, which may stand in front of it) continues in other G-buffers of the same scene. A ray is a straight line in
 // every perspective view, so it is clipped to the view's frustum, projected into the view's
-// screen and traced there by the same tracer (trace.cl) against the view's own depth, HZB,
-// thickness and normals (back faces included). The hit's colour is the view's.
+// screen and traced there by the same tracer (trace.cl) against the view's own depth, HZB and
+// surface planes (back faces included). The hit's colour is the view's.
 //
 // One pass per (rank, view): a ray takes part in the pass of view k at rank r when k is its r-th
 // best view, so every ray tries its views best first and at most SSRCL_VIEWS_PER_RAY of them.
@@ -81,7 +81,7 @@ __kernel void trace_views(ViewTraceParams params, __global const ViewCamera* vie
                           __global const int* ray_list, __global const int* pixel_rays,
                           __global const float* hzb, __global const HzbLevel* levels,
                           __global const float4* positions, __global const float4* normals,
-                          __global const float* thickness, __global const float4* color_pyramid,
+                          __global const float4* planes, __global const float4* color_pyramid,
                           __global float4* ray_hit, __global float4* ray_radiance, __global uchar* ray_state) {
   const int2 main_size = (int2)(params.width, params.height);
   const int batch_size = params.batch_size;
@@ -116,7 +116,7 @@ __kernel void trace_views(ViewTraceParams params, __global const ViewCamera* vie
   if (!clip_to_frustum(proj, cam.near_plane, cam.far_plane, pk, dk, len, &u0, &u1)) return;
 
   const int2 size = (int2)(cam.width, cam.height);
-  TraceScene sc = {size, hzb, levels, params.level_count, positions, normals, thickness, params.max_iterations, 0, 0, 0, 0, 0};
+  TraceScene sc = {size, hzb, levels, params.level_count, planes, normals, params.max_iterations, 0, 0, 0, 0, 0};
   // Where the view shows the ray's origin, the ray is seen from its start: passing behind anything
   // on its way puts its hit in doubt (a contact point the view does not see either). Where the
   // origin is hidden (a surface seen from behind) or outside, only after it comes into view.
