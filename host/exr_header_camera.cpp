@@ -15,7 +15,32 @@
 #include "ssrcl/error.hpp"
 
 namespace ssrcl::detail {
+
+Camera pinholeCamera(const glm::dmat4& view, double fovDegrees, const PixelBox& display, const std::string& where) {
+  if (!(fovDegrees > 0.0 && fovDegrees < 180.0))
+    throw Error(ErrorCode::InvalidInput, where + " must be in (0, 180) degrees");
+  const double focal = 1.0 / std::tan(fovDegrees * M_PI / 360.0);
+  Camera camera;
+  camera.view = view;
+  camera.projection = glm::dmat4(0.0);
+  camera.projection[0][0] = focal;
+  camera.projection[1][1] = focal * display.width() / display.height();
+  camera.projection[2][3] = -1.0;
+  camera.width = display.width();
+  camera.height = display.height();
+  setClipPlanes(camera, 1.0, INFINITY);  // until fitClipPlanes or the header's planes set them
+  return camera;
+}
+
 namespace {
+
+// A field of view spans the display window's width; its height follows from the pixel counts only
+// for square pixels. Anamorphic renders would come out stretched: refused instead.
+void requireSquarePixels(const Imf::Header& header, const std::string& path, const std::string& camera) {
+  if (std::abs(header.pixelAspectRatio() - 1.0f) > 1e-6f)
+    throw Error(ErrorCode::InvalidInput, path + ": pixelAspectRatio is " + std::to_string(header.pixelAspectRatio()) +
+                                             ": the " + camera + " is read for square pixels only; give --camera");
+}
 
 // Imath matrices multiply row vectors (p' = p M, m[row][col]); the same numbers read as GLM's
 // m[column][row] are the column-vector matrix of the same map, so entries copy across as is.
@@ -108,10 +133,18 @@ std::optional<HeaderCamera> standardCamera(const Imf::Header& header, const Imat
   double offIdentity = 0.0;
   for (int c = 0; c < 4; ++c)
     for (int r = 0; r < 4; ++r) offIdentity = std::max(offIdentity, std::abs(cameraToProjected[c][r] - (c == r)));
-  if (offIdentity < 1e-5)
-    throw Error(ErrorCode::InvalidInput, path + ": header attribute '" + name +
-                                             "' is the same matrix as 'worldToCamera': it holds no projection (as "
-                                             "Karma writes it); give --camera");
+  if (offIdentity < 1e-5) {
+    requireSquarePixels(header, path, "camera completed by a field of view");
+    // The pose alone, in OpenEXR's camera space (+z forward: the file's scene lies on that side);
+    // a field of view completes it (applyFieldOfView, fitFieldOfView).
+    HeaderCamera h;
+    h.camera = pinholeCamera(kFlipZ * fileCamera, 90.0, display, "placeholder");
+    h.attributes = "worldToCamera";
+    h.unprojected = path + ": header attribute '" + name +
+                    "' is the same matrix as 'worldToCamera': it holds no projection (as Karma writes it); give "
+                    "--fov (the camera's horizontal field of view) or --camera";
+    return h;
+  }
   const bool lookingDownMinusZ = cameraToProjected[2][3] < 0.0;  // w = -z: Houdini's camera space
   const glm::dvec4 w(cameraToProjected[0][3], cameraToProjected[1][3], cameraToProjected[2][3],
                      cameraToProjected[3][3]);
@@ -165,17 +198,9 @@ std::optional<HeaderCamera> vrayCamera(const Imf::Header& header, const PixelBox
     throw Error(ErrorCode::InvalidInput, path + ": header attribute 'cameraProjection' is " + value +
                                              ", not 0 (perspective), the only V-Ray projection read; give --camera");
   }
-  if (!(*fov > 0.0 && *fov < 180.0))
-    throw Error(ErrorCode::InvalidInput, path + ": header attribute 'cameraFov' must be in (0, 180) degrees");
-  const double focal = 1.0 / std::tan(*fov * M_PI / 360.0);
-  const double aspect = double(display.width()) / display.height();
-  glm::dmat4 eyeToNdc(0.0);
-  eyeToNdc[0][0] = focal;
-  eyeToNdc[1][1] = focal * aspect;
-  eyeToNdc[2][3] = -1.0;
-  const glm::dmat4 view = glm::inverse(cameraToWorld);
+  requireSquarePixels(header, path, "V-Ray camera (cameraFov)");
   HeaderCamera h;
-  h.camera = fromEyeToNdc(eyeToNdc, view, display, path + ": header attribute 'cameraTransform'");
+  h.camera = pinholeCamera(glm::inverse(cameraToWorld), *fov, display, path + ": header attribute 'cameraFov'");
   h.attributes = "cameraTransform + cameraFov";
   return h;
 }

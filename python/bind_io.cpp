@@ -27,7 +27,7 @@ Frame loadFrame(const std::string& path, const std::string& camera, const std::s
                 const std::string& depthKind, const std::string& normalSpace, std::optional<float> roughness,
                 const std::string& roughnessChannel, const std::string& position, bool glossyPasses, bool inputCheck,
                 const std::string& outputForm, const std::string& f0Channels, const std::string& baseColorChannels,
-                const std::string& metallicChannel, const std::string& materialFile) {
+                const std::string& metallicChannel, const std::string& materialFile, std::optional<double> fov) {
   cli::GBufferInputOptions o;
   o.renderer = renderer;
   o.depthKind = depthKind;
@@ -37,6 +37,7 @@ Frame loadFrame(const std::string& path, const std::string& camera, const std::s
   o.source.positionChannels = position;
   o.source.glossyPasses = glossyPasses;
   o.inputCheck = inputCheck;
+  o.fov = fov;
   o.form = {outputForm, f0Channels, baseColorChannels, metallicChannel, materialFile};
   return cli::loadFrame(o, path, camera.empty() ? cli::sidecarCameraPath(path) : camera, camera.empty());
 }
@@ -73,14 +74,15 @@ void bindIo(py::module_& m) {
         py::arg("roughnessChannel") = "", py::arg("position") = "", py::arg("glossyPasses") = true,
         py::arg("inputCheck") = true, py::arg("outputForm") = "incident", py::arg("f0Channels") = "",
         py::arg("baseColorChannels") = "", py::arg("metallicChannel") = "", py::arg("materialFile") = "",
-        py::call_guard<py::gil_scoped_release>(),
+        py::arg("fov") = py::none(), py::call_guard<py::gil_scoped_release>(),
         "Reads a G-buffer EXR and its camera as `ssrcl trace` does: the camera JSON `camera`, by default "
         "<stem>.camera.json beside the EXR or else the EXR header's camera; the renderer preset's channel names "
         "and conventions (depthKind, normalSpace override them); roughness (a number, as TraceSettings.constantRoughness) replaces the roughness channel; "
         "position names world-position channels to use instead of depth; runs the input check unless "
         "inputCheck=False. outputForm='glossy-pass' also reads the material passes applyGlossyPassForm needs "
         "(f0Channels, or baseColorChannels + metallicChannel, by default Blender AOVs base_color and metallic; "
-        "materialFile: another EXR holding them).");
+        "materialFile: another EXR holding them). fov (degrees, horizontal) completes a header camera that has a "
+        "pose and no projection (Karma's), as `--fov`.");
 
   m.def(
       "applyGlossyPassForm",

@@ -241,6 +241,7 @@ const std::map<std::string, std::string> kCheckedElsewhere = {
     {"--position", "test_conventions.cpp"},
     {"--depth-kind", "test_conventions.cpp"},
     {"--normal-space", "test_conventions.cpp"},
+    {"--fov", "test_conventions.cpp"},
     {"--no-glossy-passes", "test_conventions.cpp"},
     {"--no-input-check", "test_conventions.cpp"},
     {"--output-layer", "test_output_conventions.cpp"},

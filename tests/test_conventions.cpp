@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <glm/glm.hpp>
 #include <glm/gtc/matrix_transform.hpp>
@@ -587,17 +588,98 @@ TEST_P(Conventions, HeaderCameraMissingOrUnusable) {
   };
   const std::string unusable = variant("spherical", channels, options);
   expectRefused(unusable, "", "'cameraProjection'", "--camera");
-  ExrOptions karma;  // worldToNDC a copy of worldToCamera, as Karma writes them (KarmaHeaderCamera)
-  karma.editHeader = [&](Imf::Header& h) {
-    h.insert("worldToCamera", Imf::M44fAttribute(imath(s.camera.view)));
-    h.insert("worldToNDC", Imf::M44fAttribute(imath(s.camera.view)));
-  };
-  expectRefused(variant("karma-header", channels, karma), "", "'worldToNDC' is the same matrix as 'worldToCamera'",
-                "--camera");
   const auto r = runCommand(cli("trace " + shellQuote(unusable) + " --camera " +
                                 shellQuote(samplePath(s.name, ".camera.json")) + " --max-roughness 0 -o " +
                                 shellQuote(unusable + ".refl.exr")));
   EXPECT_EQ(r.exitCode, 0) << r.output;
+}
+
+// Karma's layout (KarmaHeaderCamera): its channels, world normals, worldToCamera with +z forward and
+// a worldToNDC that copies it. --fov, the sample camera's, completes the camera: the original's
+// pass. Without it, or with it beside a camera file, or beside a header that has no camera, or one
+// whose own projection it contradicts: refused, naming what to give.
+TEST_P(Conventions, KarmaHeaderWithFieldOfView) {
+  const Sample& s = sample();
+  ASSERT_EQ(s.camera.projection[2][0], 0.0) << "a centred frustum, which a field of view describes";
+  const double fov = 2.0 * std::atan(1.0 / s.camera.projection[0][0]) * 180.0 / M_PI;
+  const auto fovOption = [](double degrees) {
+    char text[48];
+    std::snprintf(text, sizeof text, "--fov %.9g", degrees);
+    return std::string(text);
+  };
+  const auto channels = baseChannels(s, "", "roughness") +
+                        std::vector<ExrChannel>{{"depth", s.channel(s.g.depth, 0)}} + worldNormals(s, "N.", -1, "xyz");
+  ExrOptions karma;
+  karma.editHeader = [&](Imf::Header& h) {
+    const Imath::M44f toCamera = imath(glm::scale(glm::dmat4(1.0), glm::dvec3(1, 1, -1)) * s.camera.view);
+    h.insert("worldToCamera", Imf::M44fAttribute(toCamera));
+    h.insert("worldToNDC", Imf::M44fAttribute(toCamera));
+  };
+  const std::string in = variant("karma", channels, karma);
+  expectSameAsOriginal(in, "--renderer karma " + fovOption(fov));
+  expectRefused(in, "--renderer karma", "'worldToNDC' is the same matrix as 'worldToCamera'", "give --fov");
+  expectRefused(in, "--renderer karma --camera " + shellQuote(samplePath(s.name, ".camera.json")) + " " +
+                        fovOption(fov),
+                "--fov completes a header camera, but the camera comes from", "drop --fov");
+  expectRefused(variant("karma-nocamera", channels), "--renderer karma " + fovOption(fov),
+                "has no worldToCamera in its header for --fov to complete", "give --camera");
+  ExrOptions standard;
+  standard.editHeader = [&](Imf::Header& h) {
+    addStandardCamera(h, s, Projected::StandardNdc, s.camera, Imath::Box2i({0, 0}, {s.w - 1, s.h - 1}));
+  };
+  expectRefused(variant("karma-projected", channels, standard), "--renderer karma " + fovOption(fov + 1.0),
+                "karma-projected.exr: the header camera (worldToCamera + worldToNDC) has a horizontal field of view",
+                "says otherwise: drop --fov");
+}
+
+// Karma's layout with a world-position pass instead of depth: the field of view is fitted to the
+// positions (to 1e-4 of the sample camera's focal length) and traces to the original's pass, named
+// in ssrcl/inputs. The input check cannot catch a wrong --fov from depth and normals (the mean
+// angle between the normal pass and depth-derived normals grows from 1.0 to 2.2 degrees at 10% off,
+// 8 degrees at half or twice the focal length, every other reading still worse); the positions
+// can: a --fov 10% off is refused, and so is a pose the positions do not fit.
+TEST_P(Conventions, KarmaFieldOfViewFromPositions) {
+  const Sample& s = sample();
+  const auto channels = baseChannels(s, "", "roughness") + positions(s, "P.") + worldNormals(s, "N.", -1, "xyz");
+  const auto karmaHeader = [&](const glm::dmat4& view) {
+    ExrOptions karma;
+    karma.editHeader = [view](Imf::Header& h) {
+      const Imath::M44f toCamera = imath(glm::scale(glm::dmat4(1.0), glm::dvec3(1, 1, -1)) * view);
+      h.insert("worldToCamera", Imf::M44fAttribute(toCamera));
+      h.insert("worldToNDC", Imf::M44fAttribute(toCamera));
+    };
+    return karma;
+  };
+  const std::string in = variant("karma-p", channels, karmaHeader(s.camera.view));
+
+  ssrcl::GBufferSource source;
+  source.file = in;
+  source.layer = "";
+  source.positionChannels = "P.X,P.Y,P.Z";
+  source.normalChannels = "N.x,N.y,N.z";
+  const ssrcl::GBuffer g = ssrcl::loadGBuffer(source);
+  ssrcl::HeaderCamera fitted = g.headerCamera.value();
+  ssrcl::fitFieldOfView(fitted, g, in);
+  EXPECT_NEAR(fitted.camera.projection[0][0] / s.camera.projection[0][0], 1.0, 1e-4);
+  EXPECT_NEAR(fitted.camera.projection[1][1] / s.camera.projection[1][1], 1.0, 1e-4);
+  RecordProperty("fitted", fitted.attributes);
+
+  const std::string out = in + ".refl.exr";
+  const auto r = runCommand(cli("trace " + shellQuote(in) + " --renderer karma --position P.X,P.Y,P.Z -o " +
+                                shellQuote(out)));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  expectSameAs(out, nullptr);
+  const std::string inputs =
+      Imf::InputFile(out.c_str()).header().typedAttribute<Imf::StringAttribute>("ssrcl/inputs").value();
+  EXPECT_NE(inputs.find("worldToCamera + field of view "), std::string::npos) << inputs;
+  EXPECT_NE(inputs.find(" fitted to the positions (median "), std::string::npos) << inputs;
+
+  const double fov = 2.0 * std::atan(1.0 / s.camera.projection[0][0]) * 180.0 / M_PI;
+  expectRefused(in, "--renderer karma --position P.X,P.Y,P.Z --fov " + std::to_string(1.1 * fov),
+                "fitted to the positions", "says otherwise: drop --fov");
+  const glm::dmat4 turned = glm::rotate(glm::dmat4(1.0), 0.1, glm::dvec3(0, 0, 1)) * s.camera.view;
+  expectRefused(variant("karma-p-turned", channels, karmaHeader(turned)), "--renderer karma --position P.X,P.Y,P.Z",
+                "karma-p-turned.exr: the world positions do not fit the header camera's pose", "give --camera");
 }
 
 TEST_P(Conventions, NoInputCheckTracesAnyway) {
@@ -849,10 +931,11 @@ TEST(ArnoldFileHeaderCamera, Arnold5And7HeadersReadAsTheirCameras) {
 
 // Karma's header (Houdini Solaris; Karma CPU and XPU write the same): worldToCamera in OpenEXR's
 // camera space (+z forward: the scene's origin, 37.9 units away, lies on its +z side) and a
-// worldToNDC that is a copy of it, holding no projection. Refused, naming the attribute and
-// --camera, rather than read as an orthographic camera. From
-// github.com/EmilDohne/cryptomatte-api test/images/karma_cpu_solaris_one_crypto.exr (140x79).
-TEST(KarmaHeaderCamera, WorldToNdcWithoutProjectionIsRefused) {
+// worldToNDC that is a copy of it, holding no projection. Read as the pose alone, never as an
+// orthographic camera: unusable (naming the attribute, --fov and --camera) until a field of view
+// completes it, then the camera of that field of view. From github.com/EmilDohne/cryptomatte-api
+// test/images/karma_cpu_solaris_one_crypto.exr (140x79).
+TEST(KarmaHeaderCamera, WorldToNdcWithoutProjectionTakesAFieldOfView) {
   const Imath::M44f toCamera(0.674045f, 0.4127f, 0.612652f, 0, 1.49012e-08f, 0.829375f, -0.558692f, 0,  //
                              0.738691f, -0.376583f, -0.559036f, 0, 0.290508f, 1.13962f, 37.8625f, 1);
   Imath::V3f origin;
@@ -861,12 +944,33 @@ TEST(KarmaHeaderCamera, WorldToNdcWithoutProjectionIsRefused) {
   Imf::Header header(140, 79);
   header.insert("worldToCamera", Imf::M44fAttribute(toCamera));
   header.insert("worldToNDC", Imf::M44fAttribute(toCamera));
-  const std::optional<ssrcl::HeaderCamera> read = ssrcl::detail::cameraFromHeader(header, "karma.exr");
+  std::optional<ssrcl::HeaderCamera> read = ssrcl::detail::cameraFromHeader(header, "karma.exr");
   ASSERT_TRUE(read);
-  EXPECT_NE(read->problem.find("karma.exr: header attribute 'worldToNDC' is the same matrix as 'worldToCamera'"),
+  EXPECT_EQ(read->problem, "");
+  EXPECT_FALSE(read->reversed);
+  EXPECT_NE(read->unprojected.find("karma.exr: header attribute 'worldToNDC' is the same matrix as 'worldToCamera'"),
             std::string::npos)
-      << read->problem;
-  EXPECT_NE(read->problem.find("--camera"), std::string::npos) << read->problem;
+      << read->unprojected;
+  EXPECT_NE(read->unprojected.find("--fov"), std::string::npos) << read->unprojected;
+  EXPECT_NE(read->unprojected.find("--camera"), std::string::npos) << read->unprojected;
+  ssrcl::applyFieldOfView(*read, 39.6, "karma.exr");
+  EXPECT_EQ(read->unprojected, "");
+  EXPECT_EQ(read->attributes, "worldToCamera + --fov 39.6");
+  expectCameraOfFov(*read, toCamera, 39.6, 140, 79);
+  // Once it has a projection, a field of view is a check: within 0.1 degree, else refused.
+  EXPECT_NO_THROW(ssrcl::applyFieldOfView(*read, 39.65, "karma.exr"));
+  try {
+    ssrcl::applyFieldOfView(*read, 39.8, "karma.exr");
+    ADD_FAILURE() << "a field of view 0.2 degree off was taken";
+  } catch (const ssrcl::Error& e) {
+    EXPECT_EQ(std::string(e.what()), "karma.exr: the header camera (worldToCamera + --fov 39.6) has a horizontal "
+                                     "field of view of 39.6 degrees but --fov 39.8 says otherwise: drop --fov or "
+                                     "correct it");
+  }
+  for (const double fov : {0.0, 180.0, -5.0, double(NAN)}) {
+    ssrcl::HeaderCamera unprojected = *ssrcl::detail::cameraFromHeader(header, "karma.exr");
+    EXPECT_THROW(ssrcl::applyFieldOfView(unprojected, fov, "karma.exr"), ssrcl::Error) << fov;
+  }
 }
 
 // V-Ray's cameraTransform frame, from two V-Ray files. A V-Ray for Maya 3.60.05 header (Psyop/Cryptomatte
@@ -898,6 +1002,24 @@ TEST(VrayFileHeaderCamera, MayaFrontViewReadsAsItsCamera) {
     EXPECT_NEAR(centre.z, d, 1e-4 * d) << "planar depth";
     EXPECT_NEAR(screen(d * t, 5.0, 20.0 - d).x, 960.0, 0.05) << "right edge, world +x";
     EXPECT_NEAR(screen(0.0, 5.0 + d * t * 540.0 / 960.0, 20.0 - d).y, 0.0, 0.05) << "top edge, world +y";
+  }
+}
+
+// A field of view spans the width; with non-square pixels the height would come out wrong, so V-Ray's
+// cameraFov and Karma's pose-only header are refused for them (the matrices' own cameras carry it).
+TEST(HeaderCameraFromFieldOfView, NonSquarePixelsAreRefused) {
+  Imf::Header vray(960, 540, 2.0f);
+  vray.insert("cameraTransform", Imf::M44fAttribute(Imath::M44f(1, 0, 0, 0, 0, 0, 1, 0, 0, -1, 0, 0, 0, 5, 20, 1)));
+  vray.insert("cameraFov", Imf::FloatAttribute(54.4322f));
+  Imf::Header karma(140, 79, 2.0f);
+  const Imath::M44f pose(1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 10, 1);
+  karma.insert("worldToCamera", Imf::M44fAttribute(pose));
+  karma.insert("worldToNDC", Imf::M44fAttribute(pose));
+  for (const auto& [header, name] : {std::pair{&vray, "vray.exr"}, std::pair{&karma, "karma.exr"}}) {
+    const std::optional<ssrcl::HeaderCamera> read = ssrcl::detail::cameraFromHeader(*header, name);
+    ASSERT_TRUE(read) << name;
+    EXPECT_NE(read->problem.find(std::string(name) + ": pixelAspectRatio is 2"), std::string::npos) << read->problem;
+    EXPECT_NE(read->problem.find("--camera"), std::string::npos) << read->problem;
   }
 }
 

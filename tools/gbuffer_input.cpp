@@ -77,6 +77,11 @@ void addChannelOptions(CLI::App& cmd, GBufferInputOptions& o) {
                  "camera-cv: x right, y down, +z forward (V-Ray for Maya)")
       ->group(in)
       ->check(CLI::IsMember({"world", "camera", "camera-gl", "camera-cv"}));
+  cmd.add_option("--fov", o.fov,
+                 "Horizontal field of view (degrees) of a header camera that has a pose and no projection (Karma's "
+                 "worldToCamera); from Houdini's camera: 2 atan(aperture / (2 focal length)). Checked against a "
+                 "header that has its own; refused with a camera JSON")
+      ->group(in);
   cmd.add_option("--roughness-channel", o.source.roughnessChannel, "Roughness channel name")->group(in);
   // Its range is the library's check (validateSettings).
   cmd.add_option("--roughness", o.roughness, "Constant roughness for every pixel instead of a channel")->group(in);
@@ -113,12 +118,22 @@ Frame loadFrame(const GBufferInputOptions& o, const std::string& input, const st
 
   std::error_code ec;
   const bool useHeader = headerFallback && !std::filesystem::exists(cameraPath, ec);
+  // A camera file is a whole camera: a field of view beside it would be ignored or contradict it.
+  if (o.fov && !useHeader)
+    throw Error(ErrorCode::InvalidArgument, "--fov completes a header camera, but the camera comes from " +
+                                                cameraPath + ": drop --fov (or the camera file)");
   if (useHeader && !g.headerCamera)
     throw Error(ErrorCode::InvalidInput,
                 cameraPath + ": no such camera file, and " + headerCameraFile(source) +
-                    " has no camera in its header (worldToCamera with worldToNDC or worldToScreen, or V-Ray's "
-                    "cameraTransform with cameraFov); give --camera");
+                    (o.fov ? " has no worldToCamera in its header for --fov to complete; give --camera"
+                           : " has no camera in its header (worldToCamera with worldToNDC or worldToScreen, or "
+                             "V-Ray's cameraTransform with cameraFov); give --camera"));
   if (useHeader && !g.headerCamera->problem.empty()) throw Error(ErrorCode::InvalidInput, g.headerCamera->problem);
+  if (useHeader && !g.headerCamera->unprojected.empty() && !source.positionChannels.empty())
+    fitFieldOfView(*g.headerCamera, g, headerCameraFile(source));
+  if (useHeader && o.fov) applyFieldOfView(*g.headerCamera, *o.fov, headerCameraFile(source));
+  if (useHeader && !g.headerCamera->unprojected.empty())
+    throw Error(ErrorCode::InvalidInput, g.headerCamera->unprojected);
   if (useHeader) orientHeaderCamera(*g.headerCamera, g, source, headerCameraFile(source));
   const std::string cameraName = useHeader ? "the header camera (" + g.headerCamera->attributes + ")" : cameraPath;
   const Camera display = useHeader ? g.headerCamera->camera : loadCameraJson(cameraPath);

@@ -17,6 +17,7 @@ struct GBufferInputOptions {
   std::optional<float> roughness;  // --roughness: TraceSettings::constantRoughness
   std::string renderer = "blender";
   std::string depthKind, normalSpace;  // empty: the renderer's
+  std::optional<double> fov;  // --fov: completes a header camera with a pose and no projection (Karma's)
   bool inputCheck = true;
   OutputFormOptions form;  // names the material passes its glossy-pass form reads
   // The options a preset must not override once given (set by addChannelOptions).
@@ -27,7 +28,7 @@ struct GBufferInputOptions {
   TraceSettings applyTo(TraceSettings settings) const;
 };
 
-// --renderer, --layer, --*-channel(s), --position, --depth-kind, --normal-space, --roughness,
+// --renderer, --layer, --*-channel(s), --position, --depth-kind, --normal-space, --fov, --roughness,
 // --no-input-check
 void addChannelOptions(CLI::App& cmd, GBufferInputOptions& o);
 // --color, --depth, --normal, --roughness-file, --position-file: passes read from files of their own

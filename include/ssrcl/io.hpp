@@ -80,6 +80,10 @@ struct HeaderCamera {
   // Non-empty when the header has camera attributes that cannot be used: why (naming the file and
   // attribute). Only an error when the header camera is needed (no sidecar, no --camera).
   std::string problem;
+  // Non-empty when the header has the camera's pose but no projection (Karma's worldToNDC, a copy
+  // of worldToCamera): why, naming the file and attribute. `camera` then holds that pose (OpenEXR
+  // camera space, +z forward) with a placeholder projection until applyFieldOfView completes it.
+  std::string unprojected;
 };
 
 struct GBuffer {
@@ -100,6 +104,21 @@ struct GBuffer {
   // The camera in that file's header, when it has camera attributes.
   std::optional<HeaderCamera> headerCamera;
 };
+
+// A horizontal field of view (degrees, across the display window, of a pinhole whose axis is at the
+// window's centre: 2 atan(aperture / (2 focal length))) for the header camera of `file`: completes
+// one that has a pose and no projection (HeaderCamera::unprojected), and is checked against one that
+// has its own. Throws Error(InvalidInput) naming both when they differ by more than 0.1 degree, when
+// the header's camera is orthographic, or for a field of view outside (0, 180).
+void applyFieldOfView(HeaderCamera& camera, double fovDegrees, const std::string& file);
+
+// Completes a header camera that has a pose and no projection, as applyFieldOfView does, with the
+// field of view that puts the world positions of `gbuffer` (GBuffer::position, as loaded) on their
+// pixel centres: least squares over the pixels, after dropping those more than a pixel (or three
+// median residuals) off, which antialiased edges are. Named in HeaderCamera::attributes with its
+// median residual. Throws Error(InvalidInput) naming `file`, --camera and --fov when the positions
+// do not fit the pose (half of them behind it, or a median residual over half a pixel).
+void fitFieldOfView(HeaderCamera& camera, const GBuffer& gbuffer, const std::string& file);
 
 // Reads and checks every pass (half or float, any compression, single- or multi-part), as stored:
 // depth and normals in the conventions `source` declares (applyInputConventions converts them).
