@@ -18,6 +18,9 @@ namespace {
 
 // Frames are sampled on a grid of at most this many pixels: the statistic is a frame mean.
 constexpr long long kMaxSamples = 1LL << 16;
+// A pixel filter blends positions across edges, but most pixels lie inside a surface, where a
+// render's position is its pixel's own to a fraction of a pixel.
+constexpr double kPositionPixelsOff = 1.0;
 // Neighbours further apart in depth than this (relative) are across an edge, not one surface.
 constexpr double kContinuity = 0.05;
 // A reading is preferred over the declared one when, summed over the frame, the pass normals are
@@ -112,6 +115,34 @@ InputCheckReport checkInputConventions(const GBuffer& g, const GBufferSource& so
                         decimal(100 * planar) + "% read as planar depth, " + decimal(100 * rad) +
                         "% as radial): the positions are not in world space or the camera does not match the "
                         "render; check --position and --camera (or --no-input-check to trace anyway)");
+    }
+  }
+
+  // Positions must land on their own pixels through the camera. A field of view, aspect or pose
+  // that is not the render's moves them (a 10% wrong field of view by 10% of their distance from
+  // the centre) where the depth-derived normals below barely turn (1-2 degrees on average).
+  if (fromPositions) {
+    std::vector<double> off;
+    const Image& p = g.position;
+    const int step = std::max<int>(1, int((long long)p.width * p.height / kMaxSamples));
+    for (long long i = 0; i < (long long)p.width * p.height; i += step) {
+      const int x = int(i % p.width), y = int(i / p.width);
+      const glm::dvec3 world(p.at(x, y, 0), p.at(x, y, 1), p.at(x, y, 2));
+      if (!std::isfinite(world.x + world.y + world.z) || world == glm::dvec3(0.0)) continue;  // no surface
+      const glm::dvec3 eye(camera.view * glm::dvec4(world, 1.0));
+      const glm::dvec3 screen = cameraToScreen(camera, eye);
+      const double d = glm::length(glm::dvec2(screen) - glm::dvec2(x + 0.5, y + 0.5));
+      off.push_back(std::isfinite(d) && screen.z > 0.0 ? d : INFINITY);  // behind the camera: off
+    }
+    if (off.size() >= 64) {
+      std::nth_element(off.begin(), off.begin() + off.size() / 2, off.end());
+      const double median = off[off.size() / 2];
+      if (!(median <= kPositionPixelsOff))
+        throw Error(ErrorCode::InvalidInput,
+                    (source.positionFile.empty() ? source.file : source.positionFile) +
+                        ": the position pass does not land on its pixels through the camera (median " +
+                        decimal(median) + " pixels off): the camera (field of view, aspect or pose) is not the "
+                        "render's; check --camera or --fov (or --no-input-check to trace anyway)");
     }
   }
 

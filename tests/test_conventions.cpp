@@ -349,6 +349,18 @@ TEST_P(Conventions, PositionsInsteadOfDepth) {
                                  {}, &s.camera);
   expectSameAsOriginal(in, "--position P.X,P.Y,P.Z --normal-space camera-gl");
   expectRefused(in, "--position P.X,P.Y,P.Z", "normal pass", "--normal-space camera-gl");
+  // A camera whose field of view is 10% off: the depth-derived normals barely turn, but the
+  // positions no longer land on their pixels.
+  ssrcl::Camera narrower = s.camera;
+  narrower.projection[0][0] *= 1.1;
+  narrower.projection[1][1] *= 1.1;
+  const std::string wrongCamera =
+      variant("position-narrower",
+              baseChannels(s, kBlender + "Combined.", kBlender + "roughness.X") + positions(s, "P.") +
+                  cameraNormals(s, kBlender + "Normal.", "XYZ", kGlCamera),
+              {}, &narrower);
+  expectRefused(wrongCamera, "--position P.X,P.Y,P.Z --normal-space camera-gl", "does not land on its pixels",
+                "--camera");
 }
 
 // A file with both positions and a depth pass: they must agree. World positions beside the depth
