@@ -23,7 +23,10 @@ std::string degrees(double value) {
 // Gives a pose-only header camera the projection of `fovDegrees`; `origin` says where it came from.
 void complete(HeaderCamera& h, double fovDegrees, const std::string& origin) {
   const PixelBox display{0, 0, h.camera.width - 1, h.camera.height - 1};
+  const double nearPlane = h.camera.nearPlane, farPlane = h.camera.farPlane;
   h.camera = detail::pinholeCamera(h.camera.view, fovDegrees, display, origin + ": the field of view");
+  // The header's clip planes, read before the projection was known, still hold.
+  if (h.clipPlanesKnown) setClipPlanes(h.camera, nearPlane, farPlane);
   h.unprojected.clear();
   h.attributes += " + " + origin;
 }

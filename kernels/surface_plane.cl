@@ -10,7 +10,10 @@
 #define SSRCL_NO_PLANE ((float4)(0.0f, 0.0f, 0.0f, -INFINITY))
 
 // A thickness below the plane test's float resolution (FLT_EPSILON of the point's distance; an
-// edge-on surface has thickness 0) is raised to it, so the record stays finite.
+// edge-on surface has thickness 0) is raised to it, and one beyond a million times that distance
+// (where 1 / thickness would underflow to a zero normal that nothing hits) is lowered to it: the
+// record stays finite and non-zero.
 inline float4 surface_plane(float3 p, float3 n, float thickness) {
-  return (float4)(n, dot(p, n)) * (1.0f / fmax(thickness, FLT_EPSILON * length(p)));
+  float distance = length(p);
+  return (float4)(n, dot(p, n)) * (1.0f / clamp(thickness, FLT_EPSILON * distance, 1e6f * distance));
 }

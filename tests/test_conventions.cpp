@@ -688,7 +688,7 @@ TEST_P(Conventions, KarmaFieldOfViewFromPositions) {
 
   const double fov = 2.0 * std::atan(1.0 / s.camera.projection[0][0]) * 180.0 / M_PI;
   expectRefused(in, "--renderer karma --position P.X,P.Y,P.Z --fov " + std::to_string(1.1 * fov),
-                "fitted to the positions", "says otherwise: drop --fov");
+                "does not land on its pixels", "--fov");
   const glm::dmat4 turned = glm::rotate(glm::dmat4(1.0), 0.1, glm::dvec3(0, 0, 1)) * s.camera.view;
   expectRefused(variant("karma-p-turned", channels, karmaHeader(turned)), "--renderer karma --position P.X,P.Y,P.Z",
                 "karma-p-turned.exr: the world positions do not fit the header camera's pose", "give --camera");
@@ -969,6 +969,15 @@ TEST(KarmaHeaderCamera, WorldToNdcWithoutProjectionTakesAFieldOfView) {
   EXPECT_EQ(read->unprojected, "");
   EXPECT_EQ(read->attributes, "worldToCamera + --fov 39.6");
   expectCameraOfFov(*read, toCamera, 39.6, 140, 79);
+  // Clip planes in the header survive the completion.
+  header.insert("clipNear", Imf::FloatAttribute(0.01f));
+  header.insert("clipFar", Imf::FloatAttribute(1000.0f));
+  std::optional<ssrcl::HeaderCamera> clipped = ssrcl::detail::cameraFromHeader(header, "karma.exr");
+  ASSERT_TRUE(clipped && clipped->problem.empty() && clipped->clipPlanesKnown);
+  ssrcl::applyFieldOfView(*clipped, 39.6, "karma.exr");
+  EXPECT_NEAR(clipped->camera.nearPlane, 0.01, 1e-8);
+  EXPECT_NEAR(clipped->camera.farPlane, 1000.0, 1e-4);
+  expectCameraOfFov(*clipped, toCamera, 39.6, 140, 79);
   // Once it has a projection, a field of view is a check: within 0.1 degree, else refused.
   EXPECT_NO_THROW(ssrcl::applyFieldOfView(*read, 39.65, "karma.exr"));
   try {

@@ -129,7 +129,9 @@ Frame loadFrame(const GBufferInputOptions& o, const std::string& input, const st
                            : " has no camera in its header (worldToCamera with worldToNDC or worldToScreen, or "
                              "V-Ray's cameraTransform with cameraFov); give --camera"));
   if (useHeader && !g.headerCamera->problem.empty()) throw Error(ErrorCode::InvalidInput, g.headerCamera->problem);
-  if (useHeader && !g.headerCamera->unprojected.empty() && !source.positionChannels.empty())
+  // A given --fov is not second-guessed by the fit (whose refusals would then name the wrong cause):
+  // the input check's positions-on-their-pixels rule still catches a wrong one.
+  if (useHeader && !g.headerCamera->unprojected.empty() && !source.positionChannels.empty() && !o.fov)
     fitFieldOfView(*g.headerCamera, g, headerCameraFile(source));
   if (useHeader && o.fov) applyFieldOfView(*g.headerCamera, *o.fov, headerCameraFile(source));
   if (useHeader && !g.headerCamera->unprojected.empty())
