@@ -27,8 +27,7 @@ Image planarFromPositions(const Image& positions, const Camera& camera) {
   for (int y = 0; y < positions.height; ++y)
     for (int x = 0; x < positions.width; ++x) {
       const glm::dvec3 p(positions.at(x, y, 0), positions.at(x, y, 1), positions.at(x, y, 2));
-      const bool none = !std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z) || p == glm::dvec3(0.0);
-      planar.at(x, y, 0) = none ? 1e10f : float(-(camera.view * glm::dvec4(p, 1.0)).z);
+      planar.at(x, y, 0) = !isSurfacePosition(p) ? 1e10f : float(-(camera.view * glm::dvec4(p, 1.0)).z);
     }
   return planar;
 }

@@ -31,11 +31,6 @@ void complete(HeaderCamera& h, double fovDegrees, const std::string& origin) {
   h.attributes += " + " + origin;
 }
 
-double median(std::vector<double> v) {
-  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-  return v[v.size() / 2];
-}
-
 // A pixel of the fit: where its position points, (x, y) / -z in eye space, and its centre, both
 // in units of the focal length of x (NDC x, and NDC y times height / width), so that the model is
 // centre = focal * direction on both axes.
@@ -74,7 +69,7 @@ void fitFieldOfView(HeaderCamera& h, const GBuffer& g, const std::string& file) 
     for (int x = 0; x < p.width; ++x) {
       const float* v = &p.data[(size_t(y) * p.width + x) * 3];
       const glm::dvec3 world(v[0], v[1], v[2]);
-      if (!std::isfinite(world.x + world.y + world.z) || world == glm::dvec3(0.0)) continue;  // no surface
+      if (!detail::isSurfacePosition(world)) continue;
       const glm::dvec3 eye(h.camera.view * glm::dvec4(world, 1.0));
       if (!(eye.z < 0.0)) {
         ++behind;
@@ -97,7 +92,7 @@ void fitFieldOfView(HeaderCamera& h, const GBuffer& g, const std::string& file) 
       own.push_back(glm::dot(r.centre, r.direction) / glm::dot(r.direction, r.direction));
   if (own.size() < kMinPixels)
     throw Error(ErrorCode::InvalidInput, refused + "too few of them off the camera's axis; give --fov or --camera");
-  double focal = median(own);
+  double focal = detail::median(own);
   const double pixelsPerUnit = width / 2.0;  // of the focal-length units above, on both axes
   const auto residuals = [&](double f) {
     std::vector<double> r;
@@ -106,12 +101,12 @@ void fitFieldOfView(HeaderCamera& h, const GBuffer& g, const std::string& file) 
   };
   // Least squares over the pixels within a pixel (or three median residuals) of the first fit.
   std::vector<double> r = residuals(focal);
-  const double keep = std::max(1.0, 3.0 * median(r));
+  const double keep = std::max(1.0, 3.0 * detail::median(r));
   double along = 0.0, norm = 0.0;
   for (size_t i = 0; i < rays.size(); ++i)
     if (r[i] <= keep) along += glm::dot(rays[i].centre, rays[i].direction), norm += glm::dot(rays[i].direction, rays[i].direction);
   if (norm > 0.0) focal = along / norm;
-  const double off = median(residuals(focal));
+  const double off = detail::median(residuals(focal));
   if (!(focal > 0.0) || !(off <= 0.5))
     throw Error(ErrorCode::InvalidInput, refused + "at best half of them land more than " + degrees(off) +
                                              " pixels from their own; give --camera, or --fov if the pose is right");

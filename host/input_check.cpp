@@ -102,12 +102,8 @@ InputCheckReport checkInputConventions(const GBuffer& g, const GBufferSource& so
       planarOff.push_back(std::abs(p - d) / d);
       radialOff.push_back(std::abs(p - r) / r);
     }
-    const auto median = [](std::vector<double>& v) {
-      std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-      return v[v.size() / 2];
-    };
     if (planarOff.size() >= 64) {
-      const double planar = median(planarOff), rad = median(radialOff);
+      const double planar = detail::median(planarOff), rad = detail::median(radialOff);
       if (std::min(planar, rad) > 0.01)
         throw Error(ErrorCode::InvalidInput,
                     (source.positionFile.empty() ? source.file : source.positionFile) +
@@ -128,15 +124,14 @@ InputCheckReport checkInputConventions(const GBuffer& g, const GBufferSource& so
     for (long long i = 0; i < (long long)p.width * p.height; i += step) {
       const int x = int(i % p.width), y = int(i / p.width);
       const glm::dvec3 world(p.at(x, y, 0), p.at(x, y, 1), p.at(x, y, 2));
-      if (!std::isfinite(world.x + world.y + world.z) || world == glm::dvec3(0.0)) continue;  // no surface
+      if (!detail::isSurfacePosition(world)) continue;
       const glm::dvec3 eye(camera.view * glm::dvec4(world, 1.0));
       const glm::dvec3 screen = cameraToScreen(camera, eye);
       const double d = glm::length(glm::dvec2(screen) - glm::dvec2(x + 0.5, y + 0.5));
       off.push_back(std::isfinite(d) && screen.z > 0.0 ? d : INFINITY);  // behind the camera: off
     }
     if (off.size() >= 64) {
-      std::nth_element(off.begin(), off.begin() + off.size() / 2, off.end());
-      const double median = off[off.size() / 2];
+      const double median = detail::median(off);
       if (!(median <= kPositionPixelsOff))
         throw Error(ErrorCode::InvalidInput,
                     (source.positionFile.empty() ? source.file : source.positionFile) +
