@@ -49,14 +49,14 @@ struct TraceSettings {
   // have through the pixel, from its unbroken runs of surface along the row and the column (flat
   // runs count as thin slabs; kernels/thickness.cl), kept within [thicknessMinRelative,
   // thicknessMaxRelative] of its depth. Constant: thicknessRelative of its depth (0.002 = 0.2%).
-  // Defaults chosen on the Cycles corpus (docs/BENCHMARKS.md: adaptive 23.03 dB mean, the best
-  // constant 22.72).
+  // Adaptive is the default: on the Cycles corpus it beats every constant (docs/BENCHMARKS.md,
+  // "Thickness").
   ThicknessModel thicknessModel = ThicknessModel::Adaptive;
   float thicknessRelative = 0.002f;
   float thicknessScale = 0.75f;
-  // Flat runs (slabs seen face-on) get the minimum. 1% rather than 0.2%: the tuning scenes cannot
-  // tell them apart (25.66 against 25.67 dB); picked with the held-out scores in view (18.84
-  // against 18.81), so those do not check it independently (docs/BENCHMARKS.md "Thickness").
+  // Flat runs (slabs seen face-on) get the minimum. The tuning scenes cannot tell 1% from 0.2%;
+  // 1% was picked with the held-out scores in view, so those do not check it independently
+  // (docs/BENCHMARKS.md, "Thickness").
   float thicknessMinRelative = 0.01f;
   float thicknessMaxRelative = 0.08f;
   // Traversal steps per ray before it gives up; 0: the tracer's own, 512 for Hi-Z and unlimited
@@ -72,9 +72,8 @@ struct TraceSettings {
   // they reflect toward the camera. With the "base" and "specular" images set, such a hit's
   // radiance is base + specular * (what one more ray reflected at the hit finds), the screen colour
   // where that ray leaves the screen; without them, or at 0, hits take the screen colour.
-  // 1 = every hit that is not fully rough: any glossy component is view-dependent. Corpus, medium:
-  // metal_props (props at roughness 0.2) 13.41 -> 13.48 dB, bump_floor +0.08; tuning mean 25.62 ->
-  // 25.63 against the earlier 0.1; about 4% more device time.
+  // 1 = every hit that is not fully rough: any glossy component is view-dependent, whatever its
+  // roughness (docs/BENCHMARKS.md, "Hits on glossy surfaces").
   float glossyHitRoughness = 1.0f;
 
   int samplesPerPixel = 4;  // rays per glossy pixel
@@ -88,8 +87,8 @@ struct TraceSettings {
   int reuseRadius = 2;            // resolve reuses rays of (2r+1)^2 neighbours (Stachowiak); 0 = own only
   // Rough hits read a colour mip matched to the ray's share of the lobe: small bright emitters
   // then light many rays a little instead of a few rays a lot (speckle). Its texels are weighted
-  // by where the batch's hits land, which keeps the pass's mean that of full-resolution hits.
-  // Corpus: +0.8 dB mean; night_street p99 error 31% -> 18% of the peak.
+  // by where the batch's hits land, which keeps the pass's mean that of full-resolution hits
+  // (docs/BENCHMARKS.md, "Speckle").
   bool prefilter = true;
   Tracer tracer = Tracer::HiZ;
   float linearStepPixels = 0.5f;  // Tracer::Linear step along the ray's major screen axis
@@ -121,7 +120,7 @@ bool operator!=(const TraceSettings& a, const TraceSettings& b);
 //   "high"      Hi-Z, 16 rays, 5x5 ray reuse (a quarter of each neighbour's rays), edge-aware filter.
 //   "reference" Linear march at half-pixel steps, 256 rays per pixel, no reuse, no filter: the
 //               best answer screen-space information allows, the yardstick.
-// Corpus means (docs/BENCHMARKS.md): draft 19.5, medium 23.0, high 24.4, reference 24.6 dB against Cycles.
+// Their accuracy against Cycles and their cost: docs/BENCHMARKS.md.
 // Throws Error(InvalidArgument) for an unknown name.
 TraceSettings qualityPreset(const std::string& name);
 
