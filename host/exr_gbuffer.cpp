@@ -263,8 +263,8 @@ class ExrFile {
   Imf::MultiPartInputFile& file() { return *file_; }
 
   // A bare name that several parts hold is refused rather than read from the first: Houdini
-  // writes each render var as a part of channels R, G, B (parts "N", "albedo", "C": see README,
-  // renderer conventions), so "R" alone could be a normal's x.
+  // writes each render var as a part of channels R, G, B (parts "N", "albedo", "C": see docs/renderers.md,
+  // Karma), so "R" alone could be a normal's x.
   ChannelRef find(const std::string& fullName) const {
     std::vector<int> holders;
     for (int p = 0; p < file_->parts(); ++p)

@@ -1,5 +1,5 @@
 // Cameras stored in EXR headers by renderers, turned into ssrcl's (OpenGL eye space and clip
-// matrix over the display window). README, Camera, lists the attributes and their sources.
+// matrix over the display window). docs/renderers.md, "Header cameras", lists the attributes and their sources.
 #include "exr_header_camera.hpp"
 
 #include <OpenEXR/ImfFloatAttribute.h>

@@ -403,7 +403,7 @@ TEST_P(Conventions, RenderManPresetWithHeaderCamera) {
   }
 }
 
-// Layouts a preset lists as alternatives (README, renderer conventions): Karma's colour and normals
+// Layouts a preset lists as alternatives (docs/renderers.md): Karma's colour and normals
 // as Mantra names planes (N.x) and as a Houdini multi-part file holds them (parts C and N of
 // channels R, G, B: OpenImageIO issue 3593; where the depth part's channel is named is not in that
 // source, so depth is a bare `depth` here). Each reads to the original's pass; the multi-part

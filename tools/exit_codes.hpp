@@ -3,7 +3,7 @@
 
 namespace ssrcl::cli {
 
-// Exit codes scripts can rely on (documented in the README).
+// Exit codes scripts can rely on (documented in docs/cli.md, "Exit codes").
 constexpr int kExitOk = 0;
 constexpr int kExitInternal = 1;  // a bug: please report
 constexpr int kExitUsage = 2;     // bad command line, or unusable input file/camera/parameter

@@ -47,7 +47,7 @@ TraceSettings GBufferInputOptions::applyTo(TraceSettings settings) const {
 void addChannelOptions(CLI::App& cmd, GBufferInputOptions& o) {
   const char* in = "Input channels";
   cmd.add_option("--renderer", o.renderer,
-                 "Channel names, depth kind, normal space of this renderer's passes (README, Input); each option "
+                 "Channel names, depth kind, normal space of this renderer's passes (docs/renderers.md); each option "
                  "below overrides its part")
       ->group(in)
       ->check(CLI::IsMember(rendererNames()))

@@ -8,7 +8,7 @@
 
 namespace ssrcl::cli {
 
-// --output-form and the material passes the glossy-pass form reads (README, Output).
+// --output-form and the material passes the glossy-pass form reads (docs/outputs.md).
 struct OutputFormOptions {
   std::string form = "incident";
   std::string f0Channels, baseColorChannels, metallicChannel, materialFile;

@@ -6,7 +6,7 @@ namespace ssrcl::cli {
 namespace {
 
 // Empty channel fields keep the loader's defaults for the layer; "a|b" lists the layouts a
-// renderer is known to write, tried in order. Sources and what is unverified: README, Input.
+// renderer is known to write, tried in order. Sources and what is unverified: docs/renderers.md.
 const std::vector<RendererPreset>& presets() {
   static const std::vector<RendererPreset> all = {
       {"blender", "ViewLayer", "", "", "", DepthKind::Planar, NormalSpace::World},

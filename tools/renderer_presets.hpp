@@ -7,7 +7,7 @@
 namespace ssrcl::cli {
 
 // What a renderer writes by default: channel names, depth kind, normal space, and where its
-// camera is (README, Input: the table and its sources). Options given alone override each field.
+// camera is (docs/renderers.md: the table and its sources). Options given alone override each field.
 struct RendererPreset {
   std::string name;
   std::string layer, colorChannels, depthChannel, normalChannels;

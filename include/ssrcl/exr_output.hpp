@@ -10,7 +10,7 @@
 
 namespace ssrcl {
 
-// How the reflection pass is written (README, Output).
+// How the reflection pass is written (docs/outputs.md).
 struct ReflectionExrOptions {
   // Channel prefix: "" writes R,G,B,A,distance; "refl" writes refl.R, ..., refl.distance.
   std::string layer;

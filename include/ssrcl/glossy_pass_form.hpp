@@ -7,7 +7,7 @@
 
 namespace ssrcl {
 
-// The two forms of the reflection pass (README, Output):
+// The two forms of the reflection pass (docs/outputs.md):
 //   Incident    incident radiance averaged over the specular lobe, before any specular colour
 //   GlossyPass  that times the lobe's directional albedo E(view, roughness, F0) (specular_albedo.hpp):
 //               the quantity of Cycles' Glossy Direct + Indirect passes

@@ -8,7 +8,7 @@
 
 namespace ssrcl {
 
-// What the depth pass holds (see README, Input):
+// What the depth pass holds (see docs/inputs.md):
 //   Planar  positive view-space depth along the camera axis (Blender's Depth.Z)
 //   Radial  distance from the camera centre along the pixel's ray (for an orthographic camera,
 //           from the image plane: the same as planar)

@@ -1,7 +1,7 @@
 #pragma once
 // The directional albedo E of the specular lobe Blender 3.4's Cycles renders for a Principled
 // BSDF with the GGX distribution: what turns the reflection pass (incident radiance averaged over
-// the lobe, README, Output) into Cycles' Glossy Direct + Indirect, which keep the Fresnel inside.
+// the lobe, docs/outputs.md) into Cycles' Glossy Direct + Indirect, which keep the Fresnel inside.
 //
 //   E(o) = integral of D G1(o) G1(l) F(o.h) / (4 n.o) over l   (separable Smith, as Cycles 3.4)
 //   F    = F0 (1 - FH) + FH,  FH = (Fd(o.h) - Fd(1)) / (1 - Fd(1))

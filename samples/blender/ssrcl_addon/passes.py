@@ -1,5 +1,5 @@
 """The render passes ssrcl reads: Z, Normal, the glossy light passes and a roughness value AOV
-written by every Principled BSDF material (ssrcl's default channel names, README "Input")."""
+written by every Principled BSDF material (ssrcl's default channel names, docs/inputs.md)."""
 from .scene_common import AOV_NAME, add_aov_output
 
 # Materials with no Principled BSDF have no GGX lobe ssrcl could trace: they write this roughness

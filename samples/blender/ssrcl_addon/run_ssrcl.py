@@ -4,7 +4,7 @@ import os
 import shlex
 import subprocess
 
-# ssrcl's exit codes (README "Exit codes").
+# ssrcl's exit codes (docs/cli.md, "Exit codes").
 EXIT_MEANING = {1: "internal error", 2: "bad command line or unusable input",
                 3: "OpenCL device problem", 4: "the output could not be written"}
 
