@@ -363,6 +363,14 @@ Holds holdsAll(const ExrFile& file, const std::string& names) {
   return holds;
 }
 
+// Whether `file` holds one of the alternatives of `names` (held ambiguously counts: reading it
+// names the parts that hold it).
+bool holdsAny(const ExrFile& file, const std::string& names) {
+  const std::vector<std::string> alternatives = splitAlternatives(names);
+  return std::any_of(alternatives.begin(), alternatives.end(),
+                     [&](const std::string& alternative) { return holdsAll(file, alternative) != Holds::Missing; });
+}
+
 // "a,b,c|d,e,f" lists alternatives in order of preference (renderer presets name each layout a
 // renderer is known to write): the first the file holds is read. A list without '|' is returned
 // as is, so a missing channel is reported by name; so is the first alternative held only
@@ -402,6 +410,8 @@ struct Request {
 };
 
 }  // namespace
+
+bool holdsChannels(const std::string& path, const std::string& names) { return holdsAny(ExrFile(path), names); }
 
 GBuffer loadGBuffer(const GBufferSource& source) {
   GBuffer gbuffer;
@@ -452,12 +462,7 @@ GBuffer loadGBuffer(const GBufferSource& source) {
     const std::string name = !source.depthChannel.empty() ? source.depthChannel
                              : source.layer.empty()       ? std::string("Z")
                                                           : source.layer + ".Depth.Z";
-    const auto holdsAny = [&](const ExrFile& file) {
-      const std::vector<std::string> alternatives = splitAlternatives(name);
-      return std::any_of(alternatives.begin(), alternatives.end(),
-                         [&](const std::string& alternative) { return holdsAll(file, alternative); });
-    };
-    if (!path.empty() && holdsAny(files.try_emplace(path, path).first->second))
+    if (!path.empty() && holdsAny(files.try_emplace(path, path).first->second, name))
       passes.push_back({"depth", &gbuffer.depth, 1, source.positionFile, source.depthChannel, "Depth.Z", "Z"});
   }
 

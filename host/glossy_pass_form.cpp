@@ -1,9 +1,11 @@
 #include "ssrcl/glossy_pass_form.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <glm/mat4x4.hpp>
 #include <glm/matrix.hpp>
+#include <vector>
 
 #include "ssrcl/error.hpp"
 #include "ssrcl/specular_albedo.hpp"
@@ -12,6 +14,22 @@
 namespace ssrcl {
 
 const char* outputFormName(OutputForm form) { return form == OutputForm::GlossyPass ? "glossy-pass" : "incident"; }
+
+DefaultOutputForm defaultOutputForm(const GBufferSource& source) {
+  const std::string& file = source.materialFile.empty() ? source.file : source.materialFile;
+  std::vector<std::string> passes = {source.f0Channels};  // each a channel list, alternatives kept apart
+  if (source.f0Channels.empty()) passes = {source.baseColorChannels, source.metallicChannel};
+  if (std::any_of(passes.begin(), passes.end(), [](const std::string& p) { return p.empty(); }))
+    return {OutputForm::Incident, "no material passes are named"};
+  if (file.empty()) return {OutputForm::Incident, "no file to read material passes from"};
+  std::string held, missing;
+  for (const std::string& p : passes) {
+    std::string& list = holdsChannels(file, p) ? held : missing;
+    list += (list.empty() ? "" : " and ") + p;
+  }
+  if (missing.empty()) return {OutputForm::GlossyPass, file + " holds " + held};
+  return {OutputForm::Incident, file + " has no " + missing};
+}
 
 void applyGlossyPassForm(Image& reflection, const GBuffer& g, const Camera& camera,
                          std::optional<float> constantRoughness) {

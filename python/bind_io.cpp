@@ -39,6 +39,7 @@ Frame loadFrame(const std::string& path, const std::string& camera, const std::s
   o.inputCheck = inputCheck;
   o.fov = fov;
   o.form = {outputForm, f0Channels, baseColorChannels, metallicChannel, materialFile};
+  cli::settleOutputForm(o, path, nullptr);
   return cli::loadFrame(o, path, camera.empty() ? cli::sidecarCameraPath(path) : camera, camera.empty());
 }
 
@@ -72,7 +73,7 @@ void bindIo(py::module_& m) {
   m.def("loadFrame", &loadFrame, py::arg("path"), py::arg("camera") = "", py::arg("renderer") = "blender",
         py::arg("depthKind") = "", py::arg("normalSpace") = "", py::arg("roughness") = py::none(),
         py::arg("roughnessChannel") = "", py::arg("position") = "", py::arg("glossyPasses") = true,
-        py::arg("inputCheck") = true, py::arg("outputForm") = "incident", py::arg("f0Channels") = "",
+        py::arg("inputCheck") = true, py::arg("outputForm") = "", py::arg("f0Channels") = "",
         py::arg("baseColorChannels") = "", py::arg("metallicChannel") = "", py::arg("materialFile") = "",
         py::arg("fov") = py::none(), py::call_guard<py::gil_scoped_release>(),
         "Reads a G-buffer EXR and its camera as `ssrcl trace` does: the camera JSON `camera`, by default "
@@ -81,8 +82,22 @@ void bindIo(py::module_& m) {
         "position names world-position channels to use instead of depth; runs the input check unless "
         "inputCheck=False. outputForm='glossy-pass' also reads the material passes applyGlossyPassForm needs "
         "(f0Channels, or baseColorChannels + metallicChannel, by default Blender AOVs base_color and metallic; "
-        "materialFile: another EXR holding them). fov (degrees, horizontal) completes a header camera that has a "
+        "materialFile: another EXR holding them); '' (the default) reads them where `ssrcl trace` would take that "
+        "form (defaultOutputForm), 'incident' never. fov (degrees, horizontal) completes a header camera that has a "
         "pose and no projection (Karma's), as `--fov`.");
+
+  m.def(
+      "defaultOutputForm",
+      [](const std::string& path, const std::string& renderer) {
+        cli::GBufferInputOptions o;
+        o.renderer = renderer;
+        cli::settleOutputForm(o, path, nullptr);
+        return o.form.form;
+      },
+      py::arg("path"), py::arg("renderer") = "blender",
+      "The output form `ssrcl trace` gives the pass of this G-buffer EXR when no --output-form is given: "
+      "'glossy-pass' for a Blender file holding the base_color and metallic AOVs (ViewLayer.base_color.R,G,B and "
+      "ViewLayer.metallic.X), else 'incident' (other renderers: always; docs/renderers.md, "Output forms per renderer").");
 
   m.def(
       "applyGlossyPassForm",

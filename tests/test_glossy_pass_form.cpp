@@ -2,9 +2,10 @@
 // GGX lobe against a double-precision quadrature of its definition, and `ssrcl trace
 // --output-form glossy-pass` as a user runs it: the pass it writes is the incident form times
 // that truth per pixel and channel, the form is recorded, bad material channels and resuming a
-// batch in the other form are refused.
+// batch in the other form are refused; and (issue 24) the form a file gets when none is asked for.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <glm/glm.hpp>
@@ -111,7 +112,7 @@ struct MaterialSample {
 TEST(GlossyPassForm, TraceWritesIncidentTimesAlbedoPerPixel) {
   MaterialSample s;
   const std::string incident = s.dir.file("incident.exr"), glossy = s.dir.file("glossy.exr");
-  auto r = runCommand(cli("trace " + shellQuote(s.exr) + " --quality draft -o " + shellQuote(incident)));
+  auto r = runCommand(cli("trace " + shellQuote(s.exr) + " --quality draft --output-form incident -o " + shellQuote(incident)));
   ASSERT_EQ(r.exitCode, 0) << r.output;
   r = runCommand(cli("trace " + shellQuote(s.exr) + " --quality draft --output-form glossy-pass -o " + shellQuote(glossy)));
   ASSERT_EQ(r.exitCode, 0) << r.output;
@@ -192,17 +193,127 @@ TEST(GlossyPassForm, AnF0PassWorksAndMismatchesAreRefused) {
 
   // Resuming a batch refuses a pass written in the other form.
   const std::string batchOut = s.dir.file("batch") + "/";
-  r = runCommand(cli("batch " + shellQuote(s.exr) + " --quality draft --max-roughness 0 -q -o " + shellQuote(batchOut)));
+  r = runCommand(cli("batch " + shellQuote(s.exr) + " --quality draft --max-roughness 0 --output-form incident -q -o " +
+                     shellQuote(batchOut)));
   EXPECT_EQ(r.exitCode, 0) << r.output;
   r = runCommand(cli("batch " + shellQuote(s.exr) + " --quality draft --max-roughness 0 --output-form glossy-pass -q -o " +
                      shellQuote(batchOut)));
   EXPECT_NE(r.exitCode, 0) << r.output;
   EXPECT_NE(r.output.find("output form incident, but glossy-pass is asked now"), std::string::npos) << r.output;
 
-  r = runCommand(cli("trace " + shellQuote(s.exr) + " --metallic-channel ViewLayer.metallic.X -o " + shellQuote(out)));
+  r = runCommand(cli("trace " + shellQuote(s.exr) + " --output-form incident --metallic-channel ViewLayer.metallic.X -o " +
+                     shellQuote(out)));
   EXPECT_NE(r.exitCode, 0) << r.output;
   EXPECT_NE(r.output.find("only apply with --output-form glossy-pass"), std::string::npos) << r.output;
   EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+// Issue 24: a Blender file holding the base_color and metallic AOVs gets the glossy-pass form with
+// no option, said on stderr and in ssrcl/output_form; --output-form incident overrides it; a file
+// without them stays incident, and stderr says what that pass is and which AOVs to add.
+TEST(GlossyPassForm, BlenderFilesWithMaterialAovsDefaultToIt) {
+  MaterialSample s;
+  const std::string byDefault = s.dir.file("default.exr"), asked = s.dir.file("asked.exr");
+  auto r = runCommand(cli("trace " + shellQuote(s.exr) + " --quality draft -o " + shellQuote(byDefault)));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("ssrcl: output form glossy-pass (as Cycles' Glossy Direct + Indirect"), std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find(s.exr + " holds ViewLayer.base_color.R,ViewLayer.base_color.G,ViewLayer.base_color.B and "
+                                  "ViewLayer.metallic.X"),
+            std::string::npos)
+      << r.output;
+  EXPECT_EQ(ssrcl::describeExr(byDefault).stringAttributes.at("ssrcl/output_form"), "glossy-pass");
+  r = runCommand(cli("trace " + shellQuote(s.exr) + " --quality draft --output-form glossy-pass -o " + shellQuote(asked)));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_EQ(r.output.find("output form"), std::string::npos) << "asked for, not told: " << r.output;
+  const ssrcl::test::ExrContents a = ssrcl::test::readExr(byDefault), b = ssrcl::test::readExr(asked);
+  for (const char* c : {"R", "G", "B", "A"}) EXPECT_EQ(a.channels.at(c).values, b.channels.at(c).values) << c;
+
+  const std::string incident = s.dir.file("incident.exr");
+  r = runCommand(cli("trace " + shellQuote(s.exr) + " --quality draft --output-form incident -o " + shellQuote(incident)));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_EQ(r.output.find("output form"), std::string::npos) << r.output;
+  EXPECT_EQ(ssrcl::describeExr(incident).stringAttributes.at("ssrcl/output_form"), "incident");
+  EXPECT_NE(ssrcl::test::readExr(incident).channels.at("R").values, a.channels.at("R").values);
+
+  // Batch settles it the same way, once for the sequence; -q keeps it quiet.
+  const std::string batchOut = s.dir.file("batch") + "/";
+  r = runCommand(cli("batch " + shellQuote(s.exr) + " --quality draft -o " + shellQuote(batchOut)));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("ssrcl: output form glossy-pass"), std::string::npos) << r.output;
+  const std::string batched = batchOut + "shot.refl.exr";
+  EXPECT_EQ(ssrcl::describeExr(batched).stringAttributes.at("ssrcl/output_form"), "glossy-pass");
+  EXPECT_EQ(ssrcl::test::readExr(batched).channels.at("R").values, a.channels.at("R").values);
+  r = runCommand(cli("batch " + shellQuote(s.exr) + " --quality draft -q --overwrite -o " + shellQuote(batchOut)));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_EQ(r.output.find("output form"), std::string::npos) << r.output;
+
+  // The bundled sample has no material AOVs: incident, and what to add.
+  const std::string plain = std::string(SSRCL_SOURCE_DIR) + "/samples/blender/glossy/glossy.exr";
+  const std::string plainOut = s.dir.file("plain.exr");
+  r = runCommand(cli("trace " + shellQuote(plain) + " --quality draft -o " + shellQuote(plainOut)));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  for (const std::string& said :
+       {std::string("ssrcl: output form incident: the radiance reaching the surface over its specular lobe, before the "
+                    "Fresnel that Cycles' Glossy Direct + Indirect keep"),
+        plain + " has no ViewLayer.base_color.R,ViewLayer.base_color.G,ViewLayer.base_color.B and ViewLayer.metallic.X",
+        std::string("add a base_color (Color) and a metallic (Value) AOV fed from each Principled BSDF (the ssrcl "
+                    "Blender add-on's Set Up does)")})
+    EXPECT_NE(r.output.find(said), std::string::npos) << said << "\n" << r.output;
+  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << "one line: " << r.output;
+  EXPECT_EQ(ssrcl::describeExr(plainOut).stringAttributes.at("ssrcl/output_form"), "incident");
+}
+
+// Other presets keep the incident form with the same AOVs: their specular passes come with an
+// albedo to multiply it by (docs/renderers.md, "Output forms per renderer"). The sample renamed as Arnold names
+// its passes (layer "": R,G,B, Z, N.X..., roughness, base_color.R..., metallic).
+TEST(GlossyPassForm, OtherPresetsKeepTheIncidentForm) {
+  MaterialSample s;
+  const ssrcl::test::ExrContents blender = ssrcl::test::readExr(s.exr);
+  std::vector<ssrcl::test::ExrChannel> channels;
+  for (auto [name, channel] : blender.channels) {
+    std::string plain = name.substr(std::string("ViewLayer.").size());
+    for (const auto& [from, to] : {std::pair<std::string, std::string>{"Combined.", ""}, {"Depth.Z", "Z"},
+                                   {"Normal.", "N."}, {"roughness.X", "roughness"}, {"metallic.X", "metallic"}})
+      if (plain.compare(0, from.size(), from) == 0) plain = to + plain.substr(from.size());
+    channel.name = plain;
+    channels.push_back(channel);
+  }
+  const std::string arnold = s.dir.file("arnold.exr"), out = s.dir.file("out.exr");
+  ssrcl::test::writeExr(arnold, blender.width, blender.height, channels);
+  std::filesystem::copy_file(s.dir.file("shot.camera.json"), s.dir.file("arnold.camera.json"));
+  auto r = runCommand(cli("trace " + shellQuote(arnold) + " --renderer arnold --quality draft -o " + shellQuote(out)));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_EQ(r.output.find("output form"), std::string::npos) << r.output;
+  EXPECT_EQ(ssrcl::describeExr(out).stringAttributes.at("ssrcl/output_form"), "incident");
+  r = runCommand(cli("trace " + shellQuote(arnold) + " --renderer arnold --quality draft --output-form glossy-pass -o " +
+                     shellQuote(out)));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_EQ(ssrcl::describeExr(out).stringAttributes.at("ssrcl/output_form"), "glossy-pass");
+}
+
+// The library's rule, as Python and the CLI call it: which passes decide, named in `why`.
+TEST(GlossyPassForm, DefaultFormOfAGBuffer) {
+  MaterialSample s;
+  ssrcl::GBufferSource source;
+  source.file = s.exr;
+  EXPECT_EQ(ssrcl::defaultOutputForm(source).form, ssrcl::OutputForm::Incident);  // no material passes named
+  EXPECT_EQ(ssrcl::defaultOutputForm(source).why, "no material passes are named");
+  source.baseColorChannels = "ViewLayer.base_color.R,ViewLayer.base_color.G,ViewLayer.base_color.B";
+  source.metallicChannel = "ViewLayer.metallic.X";
+  EXPECT_EQ(ssrcl::defaultOutputForm(source).form, ssrcl::OutputForm::GlossyPass);
+  source.metallicChannel = "metal|ViewLayer.metallic.X";  // alternatives: either
+  EXPECT_EQ(ssrcl::defaultOutputForm(source).form, ssrcl::OutputForm::GlossyPass);
+  source.metallicChannel = "metal";
+  const ssrcl::DefaultOutputForm missing = ssrcl::defaultOutputForm(source);
+  EXPECT_EQ(missing.form, ssrcl::OutputForm::Incident);
+  EXPECT_EQ(missing.why, s.exr + " has no metal");
+  source.f0Channels = "ViewLayer.base_color.R,ViewLayer.base_color.G,ViewLayer.base_color.B";  // F0 decides alone
+  EXPECT_EQ(ssrcl::defaultOutputForm(source).form, ssrcl::OutputForm::GlossyPass);
+  source.materialFile = std::string(SSRCL_SOURCE_DIR) + "/samples/blender/glossy/glossy.exr";  // read from there
+  EXPECT_EQ(ssrcl::defaultOutputForm(source).form, ssrcl::OutputForm::Incident);
+  source.materialFile = s.dir.file("none.exr");
+  EXPECT_THROW(ssrcl::defaultOutputForm(source), ssrcl::Error);
 }
 
 // Against Cycles: samples/blender/tinted_glossy, a copper floor (metallic 1 on the left half, 0.25

@@ -42,10 +42,23 @@ int exitCodeOf(const BatchOutcome& b) {
   return kExitOk;
 }
 
-int runBatch(const BatchOptions& o) {
+// The output form of every frame: settled once, from the first frame on disk of the whole
+// sequence (so every shard settles alike); a dry run reads no frame.
+void settleBatchOutputForm(BatchOptions& o, const std::vector<FrameJob>& all) {
+  if (o.dryRun) return;
+  std::error_code ec;
+  const auto first = std::find_if(all.begin(), all.end(), [&](const FrameJob& job) {
+    return std::filesystem::exists(job.input, ec);
+  });
+  if (first != all.end()) settleOutputForm(o.in, first->input, o.quiet ? nullptr : &std::cerr);
+  else if (o.in.form.form.empty()) o.in.form.form = outputFormName(OutputForm::Incident);  // each frame fails to read
+}
+
+int runBatch(BatchOptions& o) {
   const Shard shard = parseShard(o.shard);
   std::vector<FrameJob> jobs;
   const std::vector<FrameJob> all = planBatch(o.request);
+  settleBatchOutputForm(o, all);
   for (size_t i = 0; i < all.size(); ++i)
     if (shard.owns(i)) jobs.push_back(all[i]);
   std::unique_ptr<NeighbourWindow> neighbours;

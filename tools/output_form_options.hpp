@@ -1,6 +1,7 @@
 #pragma once
 #include <CLI/CLI.hpp>
 #include <optional>
+#include <ostream>
 #include <string>
 
 #include "ssrcl/glossy_pass_form.hpp"
@@ -8,9 +9,15 @@
 
 namespace ssrcl::cli {
 
+<<<<<<< HEAD
 // --output-form and the material passes the glossy-pass form reads (docs/outputs.md).
+=======
+struct GBufferInputOptions;
+
+// --output-form and the material passes the glossy-pass form reads (README, Output).
+>>>>>>> blenderdefaults
 struct OutputFormOptions {
-  std::string form = "incident";
+  std::string form;  // "incident" or "glossy-pass"; empty when not given, until settleOutputForm
   std::string f0Channels, baseColorChannels, metallicChannel, materialFile;
 
   OutputForm resolved() const { return form == "glossy-pass" ? OutputForm::GlossyPass : OutputForm::Incident; }
@@ -21,6 +28,12 @@ struct OutputFormOptions {
 };
 
 void addOutputFormOptions(CLI::App& cmd, OutputFormOptions& o);
+
+// Settles an --output-form not given, for frames like `file`: glossy-pass where material options
+// are given, or where the --renderer preset takes it by default (Blender) and `file` holds the
+// material passes (defaultOutputForm); incident otherwise. For that preset, says which and why in
+// one line on `tell` unless it is null. Throws Error(IoError) for an unreadable `file`.
+void settleOutputForm(GBufferInputOptions& in, const std::string& file, std::ostream* tell);
 
 // The pass in the form asked for: unchanged for incident, else times E (applyGlossyPassForm).
 void toOutputForm(const OutputFormOptions& o, Image& reflection, const GBuffer& gbuffer, const Camera& camera,

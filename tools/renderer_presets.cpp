@@ -7,9 +7,12 @@ namespace {
 
 // Empty channel fields keep the loader's defaults for the layer; "a|b" lists the layouts a
 // renderer is known to write, tried in order. Sources and what is unverified: docs/renderers.md.
+// Only Blender defaults to the glossy-pass form: the others' specular passes keep the Fresnel too,
+// but they write its albedo (Arnold's and Karma's specular_albedo, V-Ray's Reflection Filter),
+// which an incident pass is multiplied by with the renderer's own Fresnel (docs/renderers.md).
 const std::vector<RendererPreset>& presets() {
   static const std::vector<RendererPreset> all = {
-      {"blender", "ViewLayer", "", "", "", DepthKind::Planar, NormalSpace::World},
+      {"blender", "ViewLayer", "", "", "", DepthKind::Planar, NormalSpace::World, true},
       {"arnold", "", "R,G,B", "Z", "N.X,N.Y,N.Z", DepthKind::Planar, NormalSpace::World},
       // ILM's driver names variable z "Z"; RenderMan 22's names every variable but r, g, b, a as itself,
       // a colour output NAME as NAME.r/.g/.b (RenderMan 26, Gaffer's tests), R,G,B,A under `asrgba`;

@@ -13,6 +13,10 @@ struct RendererPreset {
   std::string layer, colorChannels, depthChannel, normalChannels;
   DepthKind depthKind;
   NormalSpace normalSpace;
+  // The glossy-pass output form is the default where a file holds the material passes: the
+  // renderer's glossy passes keep the Fresnel and it writes no specular albedo that an incident
+  // pass could be composited with (docs/renderers.md, "Output forms per renderer").
+  bool glossyPassByDefault = false;
 };
 
 // Throws Error(InvalidArgument) naming the known renderers for an unknown name.

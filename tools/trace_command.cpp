@@ -40,6 +40,7 @@ int runTrace(TraceOptions& o) {
   }
 
   const EnvironmentMap environment = o.settings.loadEnvironment();  // a bad file fails before any tracing
+  settleOutputForm(o.in, o.input, &std::cerr);
   const Frame frame = loadFrame(o.in, o.input, cameraPath, o.camera.empty());
   const Camera& camera = frame.camera;
   const Views views = loadViews(o.in, o.views, o.viewCameras);

@@ -1,5 +1,6 @@
 #pragma once
 #include <optional>
+#include <string>
 
 #include "ssrcl/camera.hpp"
 #include "ssrcl/image.hpp"
@@ -13,6 +14,17 @@ namespace ssrcl {
 //               the quantity of Cycles' Glossy Direct + Indirect passes
 enum class OutputForm { Incident, GlossyPass };
 const char* outputFormName(OutputForm form);  // "incident", "glossy-pass": the --output-form values
+
+// The form a G-buffer's pass takes when none is asked for: glossy-pass where the file holds the
+// material passes `source` names (f0Channels, or baseColorChannels and metallicChannel, read from
+// materialFile or else file), incident otherwise, and when it names none. `why` says which, in a
+// clause naming the file and channels ("shot.exr holds ..." / "shot.exr has no ..."). Throws
+// Error(IoError) naming the file when it is not a readable EXR.
+struct DefaultOutputForm {
+  OutputForm form = OutputForm::Incident;
+  std::string why;
+};
+DefaultOutputForm defaultOutputForm(const GBufferSource& source);
 
 // Turns a reflection pass (rgb premultiplied by A, as the pipeline writes it) into the glossy-pass
 // form: rgb times E(view, roughness, F0) per pixel and channel, A unchanged. `gbuffer` holds the

@@ -126,6 +126,12 @@ void fitFieldOfView(HeaderCamera& camera, const GBuffer& gbuffer, const std::str
 // mismatched sizes; the message starts with the file name and names the channel.
 GBuffer loadGBuffer(const GBufferSource& source);
 
+// Whether `file` holds every channel of the comma-separated `names` ("a|b": of one of the
+// alternatives), found as loadGBuffer finds them (multi-part files included; a name several parts
+// hold counts, loadGBuffer then refuses it naming them). Throws Error(IoError) naming the file
+// when it is not a readable EXR.
+bool holdsChannels(const std::string& file, const std::string& names);
+
 // Turns the passes into the pipeline's conventions: planar depth (from radial depth, or from
 // positions) and world-space normals. `camera` is the camera of the G-buffer's pixels (its data
 // window). Pixels with no surface stay without one. Run it once: it converts what `source`

@@ -31,11 +31,12 @@ def reset_scene():
             coll.remove(block)
 
 
-def add_aov_output(mat, socket):
-    """Write `socket` (a float output) to the roughness value AOV of material `mat`."""
+def add_aov_output(mat, socket, name=AOV_NAME, kind="Value"):
+    """Write `socket` to the AOV `name` of material `mat` through the AOV node's `kind` input
+    ("Value" for a value AOV, "Color" for a colour one); by default the roughness value AOV."""
     aov = mat.node_tree.nodes.new("ShaderNodeOutputAOV")
-    aov.name = AOV_NAME  # on this node type, "name" is the AOV it writes to
-    mat.node_tree.links.new(socket, aov.inputs["Value"])
+    aov.name = name  # on this node type, "name" is the AOV it writes to
+    mat.node_tree.links.new(socket, aov.inputs[kind])
     return aov
 
 

@@ -6,12 +6,17 @@ Enables the add-on, builds the bundled mirror scene (samples/blender/make_mirror
 its roughness AOV outputs removed (a scene as a user has it), animates the camera over two
 frames, presses Set Up, renders the two frames small and checks: the passes in each EXR, each
 frame's camera sidecar against the camera itself, ssrcl's pass against Cycles' own glossy passes
-of the mirror floor, the compositor wiring and what it computes, and that ssrcl failures reach
-the user as operator errors. Any failed check raises, so Blender exits 1.
+of the mirror floor (the glossy-pass form, which the material AOVs Set Up adds make ssrcl's
+default), the compositor wiring and what it computes (the pass in place of Glossy Direct +
+Indirect), and that ssrcl failures reach the user as operator errors. Then (issue 24) a dielectric,
+texture-driven, normal-mapped wooden floor: the one button's pass scores against Cycles' Glossy
+Direct + Indirect what `ssrcl trace --output-form glossy-pass` does, far above the incident form.
+Any failed check raises, so Blender exits 1.
 """
 import json
 import math
 import os
+import subprocess
 import sys
 import tempfile
 
@@ -23,6 +28,7 @@ SAMPLES_DIR = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..
 sys.path.insert(0, os.path.abspath(SAMPLES_DIR))
 import make_mirror_scene  # noqa: E402
 import minexr  # noqa: E402
+import scene_common  # noqa: E402
 from scene_common import reset_scene  # noqa: E402
 from ssrcl_addon import compositor  # noqa: E402
 
@@ -58,15 +64,19 @@ def build_scene(scene, outdir):
         camera.location.x = CAMERA_X[frame]
         camera.keyframe_insert("location", index=0, frame=frame)
     scene.frame_start, scene.frame_end = FRAMES[0], FRAMES[-1]
+    small_render(scene, 16, os.path.join(outdir, "shot_"))
+    return lambert
 
+
+def small_render(scene, samples, filepath):
+    """Cycles on the CPU at the test's size, frames written as `filepath` + frame number."""
     scene.render.engine = 'CYCLES'
     scene.cycles.device = 'CPU'
-    scene.cycles.samples = 16
+    scene.cycles.samples = samples
     scene.cycles.use_denoising = False
     scene.render.resolution_x, scene.render.resolution_y = WIDTH, HEIGHT
     scene.render.resolution_percentage = 100
-    scene.render.filepath = os.path.join(outdir, "shot_")
-    return lambert
+    scene.render.filepath = filepath
 
 
 def check_passes(exr_path):
@@ -103,10 +113,11 @@ def check_sidecar(scene, exr_path, frame):
 
 
 def check_reflection(render, pass_path):
-    """ssrcl's RGB is the reflected radiance times A; Cycles' Glossy Direct + Indirect on the
-    metal mirror floor is the same radiance times the Fresnel F = mix(0.8, 1, FH) (base colour 0.8;
-    README "Glossy passes"). Where ssrcl found the whole reflection (A = 1), their ratio must lie
-    near [0.8, 1]."""
+    """The add-on's pass is in the glossy-pass form (its material AOVs make it ssrcl's default):
+    RGB is the reflected radiance times the Fresnel, times A, as Cycles' Glossy Direct + Indirect
+    on the metal mirror floor are the same radiance times F = mix(0.8, 1, FH) (base colour 0.8;
+    README "Glossy passes"). Where ssrcl found the whole reflection (A = 1), their ratio must be
+    near 1."""
     out = minexr.ExrFile(pass_path)
     rgba = [out.channel(c) for c in "RGBA"]
     check(all(math.isfinite(v) for ch in rgba for v in ch), "pass values are finite")
@@ -122,8 +133,8 @@ def check_reflection(render, pass_path):
     ratios = sorted(sum(g[i] for g in gloss) / sum(c[i] for c in rgba[:3]) for i in found
                     if sum(c[i] for c in rgba[:3]) > 0.05)
     median = ratios[len(ratios) // 2]
-    check(0.75 <= median <= 1.05, "Cycles glossy / ssrcl reflection on the floor: median %.3f "
-          "over %d px (Fresnel 0.8..1)" % (median, len(ratios)))
+    check(0.95 <= median <= 1.05, "Cycles glossy / ssrcl glossy-pass on the floor: median %.3f "
+          "over %d px" % (median, len(ratios)))
     return rgba
 
 
@@ -166,6 +177,188 @@ def check_composite_values(scene, rgba, outdir):
     worst = max(abs(rgb[c][i] - (rgba[c][i] + env[c] * (1.0 - rgba[3][i])))
                 for c in range(3) for i in range(WIDTH * HEIGHT))
     check(worst < 1e-4, "composite = rgb + env * (1 - A) (max diff %.2g)" % worst)
+
+    # The add-on's own wiring: the pass in place of Glossy Direct + Indirect. The re-render is the
+    # first one again (same seed, CPU), so frame 1's file holds the passes the compositor read.
+    compositor.ensure_nodes(scene)
+    check(tree.nodes["Composite"].inputs["Image"].links[0].from_node.name == compositor.REPLACE_NODE,
+          "replace group -> Composite")
+    bpy.ops.render.render()
+    settings.file_format = 'OPEN_EXR'
+    bpy.data.images["Render Result"].save_render(path, scene=scene)
+    settings.file_format = 'OPEN_EXR_MULTILAYER'
+    composite = minexr.ExrFile(path)
+    render = minexr.ExrFile(os.path.join(outdir, "shot_%04d.exr" % FRAMES[0]))
+    worst = 0.0
+    for c, name in enumerate("RGB"):
+        got = composite.channel(name)
+        passes = {p: render.channel(LAYER + p + "." + name)
+                  for p in ("Combined", "GlossDir", "GlossInd", "GlossCol")}
+        for i in range(WIDTH * HEIGHT):
+            gloss = passes["GlossDir"][i] + passes["GlossInd"][i]
+            want = passes["Combined"][i] + passes["GlossCol"][i] * (rgba[c][i] - rgba[3][i] * gloss)
+            worst = max(worst, abs(got[i] - want) / (1.0 + abs(want)))
+    check(worst < 2e-3, "composite = Combined + GlossCol x (pass - A x (GlossDir + GlossInd)) "
+          "(max relative diff %.2g)" % worst)
+
+
+FLOOR_INDEX = 1
+WOOD_SIZE = 96  # the normal map's pixels
+
+
+def wood_normal_map():
+    """A tangent-space normal map of planks: a groove every 16 pixels across x, a gentle cup
+    between them. Built here, so the test needs no image file."""
+    image = bpy.data.images.new("WoodNormal", WOOD_SIZE, WOOD_SIZE, float_buffer=True)
+    image.colorspace_settings.name = 'Non-Color'
+    pixels = []
+    for _y in range(WOOD_SIZE):
+        for x in range(WOOD_SIZE):
+            u = (x % 16) / 16.0
+            slope = 0.25 * math.sin(2.0 * math.pi * u) + (0.6 if u < 1.0 / 16.0 else 0.0)
+            n = (-slope, 0.0, 1.0)
+            length = math.sqrt(sum(v * v for v in n))
+            pixels += [0.5 + 0.5 * v / length for v in n] + [1.0]
+    image.pixels = pixels
+    image.pack()
+    return image
+
+
+def wood_material():
+    """A dielectric Principled floor as a real asset has it: base colour and roughness driven by
+    textures (wood-like bands, noise), metallic 0, a normal map; no AOV outputs (the add-on adds
+    them, reading the texture links)."""
+    mat = bpy.data.materials.new("Wood")
+    mat.use_nodes = True
+    nodes, links = mat.node_tree.nodes, mat.node_tree.links
+    bsdf = nodes["Principled BSDF"]
+    bsdf.inputs["Metallic"].default_value = 0.0
+    coords = nodes.new("ShaderNodeTexCoord")
+    mapping = nodes.new("ShaderNodeMapping")
+    mapping.inputs["Scale"].default_value = (0.5, 0.5, 0.5)
+    links.new(coords.outputs["Object"], mapping.inputs["Vector"])
+    wave = nodes.new("ShaderNodeTexWave")
+    wave.inputs["Scale"].default_value = 3.0
+    wave.inputs["Distortion"].default_value = 6.0
+    links.new(mapping.outputs["Vector"], wave.inputs["Vector"])
+    ramp = nodes.new("ShaderNodeValToRGB")
+    ramp.color_ramp.elements[0].color = (0.12, 0.05, 0.02, 1.0)
+    ramp.color_ramp.elements[1].color = (0.55, 0.30, 0.14, 1.0)
+    links.new(wave.outputs["Fac"], ramp.inputs["Fac"])
+    links.new(ramp.outputs["Color"], bsdf.inputs["Base Color"])
+    noise = nodes.new("ShaderNodeTexNoise")
+    noise.inputs["Scale"].default_value = 4.0
+    links.new(mapping.outputs["Vector"], noise.inputs["Vector"])
+    rough = nodes.new("ShaderNodeMapRange")
+    rough.inputs["To Min"].default_value, rough.inputs["To Max"].default_value = 0.08, 0.3
+    links.new(noise.outputs["Fac"], rough.inputs["Value"])
+    links.new(rough.outputs["Result"], bsdf.inputs["Roughness"])
+    image = nodes.new("ShaderNodeTexImage")
+    image.image = wood_normal_map()
+    uv = nodes.new("ShaderNodeMapping")
+    uv.inputs["Scale"].default_value = (12.0, 12.0, 1.0)
+    links.new(coords.outputs["UV"], uv.inputs["Vector"])
+    links.new(uv.outputs["Vector"], image.inputs["Vector"])
+    normal_map = nodes.new("ShaderNodeNormalMap")
+    normal_map.inputs["Strength"].default_value = 0.5
+    links.new(image.outputs["Color"], normal_map.inputs["Color"])
+    links.new(normal_map.outputs["Normal"], bsdf.inputs["Normal"])
+    return mat
+
+
+def plain_material(name, color, roughness, metallic):
+    mat = bpy.data.materials.new(name)
+    mat.use_nodes = True
+    bsdf = mat.node_tree.nodes["Principled BSDF"]
+    bsdf.inputs["Base Color"].default_value = (*color, 1.0)
+    bsdf.inputs["Roughness"].default_value = roughness
+    bsdf.inputs["Metallic"].default_value = metallic
+    return mat
+
+
+def build_wood_scene(scene, outdir):
+    """The wooden floor under a glossy red plastic sphere, a gold cylinder and a white box, before
+    a wall, lit by the sky alone: no lamp whose highlight Glossy Direct holds and no screen shows."""
+    reset_scene()
+    scene_common.build_world(scene)
+    bpy.ops.mesh.primitive_plane_add(size=40.0, location=(0.0, 0.0, 0.0))
+    floor = bpy.context.active_object
+    floor.data.materials.append(wood_material())
+    floor.pass_index = FLOOR_INDEX
+    scene_common.add_object("sphere", (-0.9, 0.5, 0.8), plain_material("RedPlastic", (0.7, 0.04, 0.03), 0.1, 0.0),
+                            size=0.8)
+    scene_common.add_object("cylinder", (1.4, 1.8, 0.9), plain_material("Gold", (0.9, 0.6, 0.2), 0.2, 1.0),
+                            size=(0.5, 1.8))
+    scene_common.add_object("cube", (0.5, -2.0, 0.4), plain_material("White", (0.8, 0.8, 0.8), 0.6, 0.0),
+                            size=0.4, rotation_z=math.radians(25))
+    scene_common.add_object("cube", (0.0, 7.0, 3.0), plain_material("Wall", (0.6, 0.55, 0.5), 0.8, 0.0),
+                            size=(3.0))
+    bpy.context.active_object.scale = (6.0, 0.1, 1.0)
+    scene_common.build_camera(scene)
+    small_render(scene, 64, os.path.join(outdir, "wood_"))
+    scene.frame_start = scene.frame_end = scene.frame_current = 1
+    scene.ssrcl.enabled = True
+
+
+def psnr_over(reference, image, pixels):
+    """PSNR of `image` against `reference` (lists of R, G, B channels) over `pixels`, peak the
+    reference's 99.9th percentile there (issue 24's scoring)."""
+    values = sorted(reference[c][i] for c in range(3) for i in pixels)
+    peak = values[min(len(values) - 1, int(0.999 * len(values)))]
+    mse = sum((image[c][i] - reference[c][i]) ** 2 for c in range(3) for i in pixels) / (3 * len(pixels))
+    return 10.0 * math.log10(peak * peak / max(mse, 1e-30))
+
+
+def check_dielectric_floor(scene, prefs, outdir):
+    """Issue 24: on a dielectric, texture-driven, normal-mapped floor the add-on's one button gives
+    the glossy-pass form, which scores against Cycles' Glossy Direct + Indirect what `ssrcl trace
+    --output-form glossy-pass` scores, and far better than the incident form (5-25x too bright on
+    a dielectric)."""
+    wood = os.path.join(outdir, "wood")
+    os.makedirs(wood, exist_ok=True)
+    build_wood_scene(scene, wood)
+    bpy.context.view_layer.use_pass_object_index = True
+    bpy.ops.ssrcl.setup()
+    floor_mat = bpy.data.materials["Wood"]
+    links = {n.name: n.inputs["Color" if n.name == "base_color" else "Value"].links[0].from_node.bl_idname
+             for n in floor_mat.node_tree.nodes if n.bl_idname == "ShaderNodeOutputAOV"}
+    check(links == {"roughness": "ShaderNodeMapRange", "base_color": "ShaderNodeValToRGB",
+                    "metallic": "ShaderNodeValue"},
+          "the floor's AOVs come from what drives its BSDF: %s" % links)
+    bpy.ops.render.render(write_still=True)  # a still is written with no frame number
+    exr_path = os.path.join(wood, "wood_.exr")
+    addon_pass = os.path.join(wood, "ssrcl", "wood_.exr")
+    check(scene.ssrcl.status == "traced 1 frame(s): " + addon_pass, "status: " + scene.ssrcl.status)
+
+    forms = {}
+    for form in ("glossy-pass", "incident"):
+        out = os.path.join(wood, form + ".exr")
+        result = subprocess.run([prefs.executable, "trace", exr_path, "--output-form", form, "-o", out],
+                                capture_output=True, text=True)
+        check(result.returncode == 0, "ssrcl trace --output-form %s: %s" % (form, result.stderr.strip()))
+        forms[form] = minexr.ExrFile(out)
+    result = subprocess.run([prefs.executable, "trace", exr_path, "-o", os.path.join(wood, "default.exr")],
+                            capture_output=True, text=True)
+    check("output form glossy-pass" in result.stderr, "ssrcl trace says it defaults to glossy-pass: "
+          + result.stderr.strip())
+
+    render = minexr.ExrFile(exr_path)
+    index = render.channel(LAYER + "IndexOB.X")
+    floor = [i for i in range(WIDTH * HEIGHT) if index[i] == FLOOR_INDEX]
+    check(len(floor) > 0.4 * WIDTH * HEIGHT, "floor covers %d px" % len(floor))
+    reference = [[d + g for d, g in zip(render.channel(LAYER + "GlossDir." + c),
+                                        render.channel(LAYER + "GlossInd." + c))] for c in "RGB"]
+    scores = {}
+    for name, exr in (("add-on", minexr.ExrFile(addon_pass)), ("glossy-pass", forms["glossy-pass"]),
+                      ("incident", forms["incident"])):
+        scores[name] = psnr_over(reference, [exr.channel(c) for c in "RGB"], floor)
+    print("PSNR against Cycles' Glossy Direct + Indirect on the wooden floor: %s"
+          % ", ".join("%s %.2f dB" % item for item in scores.items()))
+    check(abs(scores["add-on"] - scores["glossy-pass"]) < 0.05,
+          "add-on pass scores what --output-form glossy-pass does (%.2f / %.2f dB)"
+          % (scores["add-on"], scores["glossy-pass"]))
+    check(scores["glossy-pass"] > scores["incident"] + 6.0,
+          "glossy-pass beats the incident form by %.1f dB" % (scores["glossy-pass"] - scores["incident"]))
 
 
 def check_errors_reported(scene, prefs):
@@ -212,9 +405,13 @@ def main():
     scene = bpy.context.scene
     lambert = build_scene(scene, outdir)
     bpy.ops.ssrcl.setup()
-    aov = next(n for n in lambert.node_tree.nodes if n.bl_idname == "ShaderNodeOutputAOV")
-    check(aov.name == "roughness" and aov.inputs["Value"].links[0].from_socket.default_value
-          == 1.0, "a material without a Principled BSDF writes roughness 1")
+    aovs = {n.name: n for n in lambert.node_tree.nodes if n.bl_idname == "ShaderNodeOutputAOV"}
+    written = {name: node.inputs[kind].links[0].from_socket.default_value
+               for name, kind in (("roughness", "Value"), ("metallic", "Value"), ("base_color", "Color"))
+               for node in [aovs[name]]}
+    check(written["roughness"] == 1.0 and written["metallic"] == 0.0
+          and tuple(written["base_color"])[:3] == (0.0, 0.0, 0.0),
+          "a material without a Principled BSDF writes roughness 1, metallic 0, base colour black")
     bpy.ops.render.render(animation=True)
     check(scene.ssrcl.status.startswith("traced 2 frame(s)"), "status: " + scene.ssrcl.status)
 
@@ -232,6 +429,7 @@ def main():
     check_composite_values(scene, first_rgba, outdir)
     check_errors_reported(scene, prefs)
     check_still_render(scene, outdir)
+    check_dielectric_floor(scene, prefs, outdir)
     print("ssrcl add-on test: all checks passed")
 
 

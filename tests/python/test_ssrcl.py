@@ -194,6 +194,18 @@ class CliEquivalenceOfOptionsTest(unittest.TestCase):
         ratio = glossy[lit, :3].sum(axis=0) / incident[lit, :3].sum(axis=0)
         self.assertTrue(np.all(ratio < 1.0) and ratio[0] > ratio[2], ratio)
 
+    def test_default_output_form_is_the_cli_default(self):
+        # TINTED holds the base_color / metallic AOVs: `ssrcl trace` with no --output-form writes
+        # the glossy-pass form, and loadFrame reads the passes it needs by default.
+        self.assertEqual(ssrcl.defaultOutputForm(TINTED), "glossy-pass")
+        self.assertEqual(ssrcl.defaultOutputForm(GLOSSY), "incident")
+        self.assertEqual(ssrcl.defaultOutputForm(TINTED, renderer="arnold"), "incident")
+        with tempfile.TemporaryDirectory() as tmp:
+            cli = cli_pass(tmp, [TINTED, "--seed", "5", "--spp", "1"])
+        frame = ssrcl.loadFrame(TINTED)
+        glossy = ssrcl.applyGlossyPassForm(python_pass(frame, ssrcl.TraceSettings(seed=5, samplesPerPixel=1)), frame)
+        np.testing.assert_array_equal(bits(glossy), bits(cli))
+
     def test_glossy_pass_form_needs_material_passes(self):
         frame = ssrcl.loadFrame(GLOSSY)  # read without the glossy-pass form: no material passes
         with self.assertRaises(ssrcl.InvalidArgumentError):

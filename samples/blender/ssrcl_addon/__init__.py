@@ -1,9 +1,11 @@
 """ssrcl Blender add-on: one button sets a scene up for ssrcl's screen-space reflection pass.
 
-Set Up (Render properties > ssrcl Reflections) enables Z, Normal, the glossy passes and a roughness
-AOV wired into every Principled material, and the multilayer EXR output; then every rendered frame
-gets its camera sidecar, ssrcl traces the frames when the render is done, and the pass appears in
-the compositor as an Image node wired into a "reflection over environment" node group.
+Set Up (Render properties > ssrcl Reflections) enables Z, Normal, the glossy passes and the
+roughness, base_color and metallic AOVs wired into every material (from what drives its Principled
+BSDF), and the multilayer EXR output; then every rendered frame gets its camera sidecar, ssrcl
+traces the frames when the render is done (in the glossy-pass form, which those AOVs make its
+default), and the pass appears in the compositor as an Image node that replaces Glossy Direct +
+Indirect in the Composite output, and feeds a "reflection over environment" group on a Viewer.
 """
 import bpy
 

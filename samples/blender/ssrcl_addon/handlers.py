@@ -21,8 +21,20 @@ def _render_write(scene, _depsgraph=None):
         return
     # No sidecar here: the render evaluates its own copy of the scene, so the camera of the main
     # depsgraph is not at this frame yet (and an interactive render runs this off the main thread).
-    path = os.path.abspath(bpy.path.abspath(scene.render.frame_path(frame=scene.frame_current)))
-    written_frames.setdefault(scene.name, []).append((scene.frame_current, path))
+    written_frames.setdefault(scene.name, []).append((scene.frame_current, _written_path(scene)))
+
+
+def _written_path(scene):
+    """The file the render just wrote: an animation frame's numbered path, or for a still
+    (render(write_still=True)) the output path as given, with no frame number; the newer where
+    both exist."""
+    render = scene.render
+    numbered = os.path.abspath(bpy.path.abspath(render.frame_path(frame=scene.frame_current)))
+    still = os.path.abspath(bpy.path.abspath(render.filepath))
+    if render.use_file_extension and not still.endswith(render.file_extension):
+        still += render.file_extension
+    written = [path for path in (numbered, still) if os.path.isfile(path)]
+    return max(written, key=os.path.getmtime) if written else numbered
 
 
 def _trace():

@@ -14,8 +14,9 @@ def _preferences(context):
 
 
 class SSRCL_OT_setup(bpy.types.Operator):
-    """Enable the passes ssrcl needs, a roughness AOV in every material, a camera sidecar for every
-    rendered frame, and the reflection pass traced into the compositor after each render"""
+    """Enable the passes ssrcl needs, roughness, base colour and metallic AOVs in every material, a
+    camera sidecar for every rendered frame, and the reflection pass traced after each render into
+    the compositor, where it replaces Glossy Direct + Indirect"""
     bl_idname = "ssrcl.setup"
     bl_label = "Set Up ssrcl Reflection Pass"
     bl_options = {'REGISTER', 'UNDO'}
@@ -27,16 +28,19 @@ class SSRCL_OT_setup(bpy.types.Operator):
         settings.file_format = 'OPEN_EXR_MULTILAYER'
         passes.enable_view_layer_passes(context.view_layer)
         scene.ssrcl.view_layer = context.view_layer.name
-        principled, no_lobe, skipped = passes.wire_roughness_aov(bpy.data.materials)
+        wired = passes.wire_material_aovs(bpy.data.materials)
         compositor.ensure_nodes(scene)
         scene.ssrcl.enabled = True
-        self.report({'INFO'}, "ssrcl: passes on view layer '%s'; roughness AOV added to %d "
-                    "Principled material(s), %d without one (written as %g)"
-                    % (context.view_layer.name, len(principled), len(no_lobe),
-                       passes.NO_LOBE_ROUGHNESS))
-        if skipped:
-            self.report({'WARNING'}, "ssrcl: materials without nodes write no roughness AOV "
-                        "(ssrcl reads 0, a mirror): %s" % ", ".join(skipped))
+        self.report({'INFO'}, "ssrcl: passes on view layer '%s'; roughness, base_color and metallic "
+                    "AOVs added to %d Principled material(s), %d Glossy BSDF one(s) (metallic 1), "
+                    "%d without either (roughness %g, metallic 0); the pass replaces Glossy "
+                    "Direct + Indirect in the composite"
+                    % (context.view_layer.name, len(wired["principled"]), len(wired["glossy"]),
+                       len(wired["no_lobe"]), passes.NO_LOBE_ROUGHNESS))
+        if wired["skipped"]:
+            self.report({'WARNING'}, "ssrcl: materials without nodes write no AOVs (ssrcl reads "
+                        "roughness 0, a mirror, and a black dielectric): %s"
+                        % ", ".join(wired["skipped"]))
         return {'FINISHED'}
 
 
