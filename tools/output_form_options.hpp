@@ -9,13 +9,9 @@
 
 namespace ssrcl::cli {
 
-<<<<<<< HEAD
-// --output-form and the material passes the glossy-pass form reads (docs/outputs.md).
-=======
 struct GBufferInputOptions;
 
-// --output-form and the material passes the glossy-pass form reads (README, Output).
->>>>>>> blenderdefaults
+// --output-form and the material passes the glossy-pass form reads (docs/outputs.md).
 struct OutputFormOptions {
   std::string form;  // "incident" or "glossy-pass"; empty when not given, until settleOutputForm
   std::string f0Channels, baseColorChannels, metallicChannel, materialFile;

@@ -116,7 +116,7 @@ def check_reflection(render, pass_path):
     """The add-on's pass is in the glossy-pass form (its material AOVs make it ssrcl's default):
     RGB is the reflected radiance times the Fresnel, times A, as Cycles' Glossy Direct + Indirect
     on the metal mirror floor are the same radiance times F = mix(0.8, 1, FH) (base colour 0.8;
-    README "Glossy passes"). Where ssrcl found the whole reflection (A = 1), their ratio must be
+    samples/blender/README.md, "Glossy passes"). Where ssrcl found the whole reflection (A = 1), their ratio must be
     near 1."""
     out = minexr.ExrFile(pass_path)
     rgba = [out.channel(c) for c in "RGBA"]

@@ -1,13 +1,8 @@
-<<<<<<< HEAD
-"""The render passes ssrcl reads: Z, Normal, the glossy light passes and a roughness value AOV
-written by every Principled BSDF material (ssrcl's default channel names, docs/inputs.md)."""
-=======
 """The render passes ssrcl reads: Z, Normal, the glossy light passes, and three AOVs written by
-every material (ssrcl's default channel names, README "Input"): roughness (value), and the
+every material (ssrcl's default channel names, docs/inputs.md): roughness (value), and the
 base_color (colour) and metallic (value) that give `ssrcl trace` the glossy-pass output form,
 the quantity of Cycles' Glossy Direct + Indirect (Fresnel included), which the compositor then
 replaces with it."""
->>>>>>> blenderdefaults
 from .scene_common import AOV_NAME, add_aov_output
 
 BASE_COLOR_AOV, METALLIC_AOV = "base_color", "metallic"
