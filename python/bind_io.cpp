@@ -97,7 +97,7 @@ void bindIo(py::module_& m) {
       py::arg("path"), py::arg("renderer") = "blender",
       "The output form `ssrcl trace` gives the pass of this G-buffer EXR when no --output-form is given: "
       "'glossy-pass' for a Blender file holding the base_color and metallic AOVs (ViewLayer.base_color.R,G,B and "
-      "ViewLayer.metallic.X), else 'incident' (other renderers: always; docs/renderers.md, "Output forms per renderer").");
+      "ViewLayer.metallic.X), else 'incident' (other renderers: always; docs/renderers.md, Output forms per renderer).");
 
   m.def(
       "applyGlossyPassForm",
