@@ -333,15 +333,16 @@ int main(int argc, char** argv) {
       std::cout << "\n";
     }
     std::cout << "\nmeans over scenes (tune / holdout / all); ms = device time per frame; low-A = share of squared "
-                 "error on pixels with A < 0.5; p99 = 99th percentile per-pixel error, % of peak\n"
+                 "error on pixels with A < 0.5; p99 = 99th percentile per-pixel error, % of peak; flies = per mille of pixels over 4x\n"
+                 "Cycles' local mean\n"
               << std::left << std::setw(labelWidth) << "config" << std::right << std::setw(9) << "ms" << std::setw(9)
               << "tune" << std::setw(9) << "holdout" << std::setw(9) << "all" << std::setw(9) << "low-A"
-              << std::setw(9) << "p99" << "\n";
+              << std::setw(9) << "p99" << std::setw(9) << "flies" << "\n";
     nlohmann::json json;
     std::vector<ssrcl::cli::BenchResult> points;
     for (size_t c = 0; c < configs.size(); ++c) {
       std::map<std::string, std::pair<double, int>> psnr;
-      double ms = 0, low = 0, p99 = 0, rmseRel = 0;
+      double ms = 0, low = 0, p99 = 0, flies = 0, rmseRel = 0;
       int n = 0;
       for (size_t s = 0; s < scenes.size(); ++s) {
         const Score& sc = scores[c][s];
@@ -350,7 +351,8 @@ int main(int argc, char** argv) {
           psnr[split].first += sc.error.psnr;
           psnr[split].second += 1;
         }
-        ms += sc.ms, low += sc.error.lowConfidence, p99 += sc.error.p99, rmseRel += std::pow(10.0, -sc.error.psnr / 20);
+        ms += sc.ms, low += sc.error.lowConfidence, p99 += sc.error.p99, flies += sc.error.fireflies;
+        rmseRel += std::pow(10.0, -sc.error.psnr / 20);
         ++n;
         json["scores"].push_back({{"config", configs[c].label},
                                   {"scene", scenes[s].name},
@@ -360,7 +362,8 @@ int main(int argc, char** argv) {
                                   {"rmse", sc.error.rmse},
                                   {"bias", sc.error.bias},
                                   {"low_confidence_share", sc.error.lowConfidence},
-                                  {"p99_relative", sc.error.p99}});
+                                  {"p99_relative", sc.error.p99},
+                                  {"firefly_share", sc.error.fireflies}});
       }
       if (!n) continue;
       auto mean = [&](const std::string& split) {
@@ -374,7 +377,7 @@ int main(int argc, char** argv) {
       std::cout << std::left << std::setw(labelWidth) << configs[c].label << std::right << std::setprecision(0)
                 << std::setw(9) << ms / n << std::setw(9) << mean("tune") << std::setw(9) << mean("holdout")
                 << std::setw(9) << mean("all") << std::setprecision(3) << std::setw(9) << low / n << std::setprecision(2)
-                << std::setw(9) << 100 * p99 / n << "\n";
+                << std::setw(9) << 100 * p99 / n << std::setw(9) << 1000 * flies / n << "\n";
       if (!configs[c].eevee) {
         ssrcl::cli::BenchResult point;
         point.input = "corpus mean (" + std::to_string(n) + " scenes)";

@@ -80,6 +80,20 @@ ReferenceError referenceError(const CyclesReference& ref, const Image& reflectio
   double se = 0, seLow = 0, abs = 0, signedSum = 0;
   std::vector<double> perPixel;
   perPixel.reserve(group.size());
+  // Cycles' per-pixel channel mean over the reflector (NaN elsewhere), for the local means.
+  const int w = ref.gbuffer.depth.width, h = ref.gbuffer.depth.height;
+  std::vector<double> cyclesMean(size_t(w) * h, NAN);
+  for (size_t k = 0; k < ref.pixels.size(); ++k)
+    cyclesMean[size_t(ref.pixels[k])] = (ref.cycles[3 * k] + ref.cycles[3 * k + 1] + ref.cycles[3 * k + 2]) / 3;
+  auto localMean = [&](int i) {
+    double sum = 0;
+    int n = 0;
+    for (int y = std::max(0, i / w - 3); y <= std::min(h - 1, i / w + 3); ++y)
+      for (int x = std::max(0, i % w - 3); x <= std::min(w - 1, i % w + 3); ++x)
+        if (const double v = cyclesMean[size_t(y) * w + x]; !std::isnan(v)) sum += v, ++n;
+    return sum / n;  // n >= 1: the pixel itself is on the reflector
+  };
+  size_t fireflies = 0;
   for (size_t k : group) {
     const size_t i = size_t(ref.pixels[k]);
     double pixelSe = 0, pixelAbs = 0;
@@ -94,6 +108,7 @@ ReferenceError referenceError(const CyclesReference& ref, const Image& reflectio
     abs += pixelAbs;
     if (reflection.channels == 4 && reflection.data[4 * i + 3] < 0.5f) seLow += pixelSe;
     perPixel.push_back(pixelAbs / 3);
+    if (pixelAbs / 3 > std::max(4 * localMean(ref.pixels[k]), 0.01 * ref.peak)) ++fireflies;
   }
   const double n = 3.0 * std::max<size_t>(group.size(), 1);
   ReferenceError e;
@@ -102,6 +117,7 @@ ReferenceError referenceError(const CyclesReference& ref, const Image& reflectio
   e.bias = signedSum / n;
   e.psnr = 20 * std::log10(ref.peak / std::max(e.rmse, 1e-30));
   e.lowConfidence = se > 0 ? seLow / se : 0;
+  e.fireflies = double(fireflies) / std::max<size_t>(group.size(), 1);
   if (!perPixel.empty()) {
     std::nth_element(perPixel.begin(), perPixel.begin() + perPixel.size() * 99 / 100, perPixel.end());
     e.p99 = perPixel[perPixel.size() * 99 / 100] / ref.peak;

@@ -41,6 +41,10 @@ struct ReferenceError {
   double psnr = 0;             // dB, peak = ref.peak
   double lowConfidence = 0;    // share of the squared error on pixels with A < 0.5
   double p99 = 0;              // 99th percentile of per-pixel mean |error|, relative to the peak
+  // Share of the group's pixels whose mean |error| exceeds 4x Cycles' local mean (over the
+  // reflector pixels of the 7x7 window around it) and 1% of the peak: speckle and fireflies, which
+  // a smooth error (a blur, a dim pass) does not count.
+  double fireflies = 0;
 };
 ReferenceError referenceError(const CyclesReference& ref, const Image& reflection, const std::vector<size_t>& group);
 
