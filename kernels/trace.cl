@@ -395,12 +395,13 @@ __kernel void trace_rays(TraceParams params, __global const float* hzb, __global
 #if SSRCL_MATERIAL_HITS
     // The specular colour times E(the hit's F0, its roughness, toward this pixel) times what the
     // ray finds: Cycles' GlossCol is ~1 on dielectrics and metals alike, the Fresnel and a metal's
-    // tint live in Glossy Direct/Indirect, so the colour alone lit dielectric props 10-25x too
-    // bright in their reflections. Where the ray finds nothing (c2 < 1), or none is traced (a
-    // mirror ray on a rough hit), the guess is the glossy light the camera sees there times
-    // E(toward this pixel) / E(toward the camera), at most 1: raised, the camera's highlight comes
-    // back as the blob (issue 24 corpus: the cap ties the screen colour to 0.01 dB on every scene
-    // where the uncapped ratio loses up to 0.16 dB).
+    // tint live in Glossy Direct/Indirect, so with the colour alone a dielectric's specular part
+    // came out 10-25x too bright (1 against E 0.04-0.1 off grazing). Where the ray finds nothing
+    // (c2 < 1), or none is traced (a mirror ray on a rough hit), the guess is the glossy light
+    // the camera sees there times E(toward this pixel) / E(toward the camera), at most 1: raised,
+    // the camera's highlight comes back as the blob (where the floor shows props, issue 24's
+    // corpus and tests/data/glazed_props: capped it ties the screen colour within 0.01 dB on all
+    // six scenes, uncapped it loses up to 0.16 dB).
     float3 f0_q = vload3(q, f0), base_q = vload3(q, base);
     float2 e = specular_albedo(albedo, alpha_q, dot(nq.xyz, -dir));
     float3 e_out = f0_q * e.x + e.y;
