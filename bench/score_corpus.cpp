@@ -15,7 +15,9 @@
 //   medium   high:spp=32   medium:thickness=0.01   medium:model=constant,thickness=0.005
 // Keys: thickness (constant), model (adaptive|constant), scale, tmin, tmax (adaptive),
 // hits (bounce, the default: hits on glossy pixels continue, with the render's glossy passes;
-// screen: they take the screen colour),
+// screen: they take the screen colour), materials (1, the default: those hits are shaded with
+// each pixel's F0 from the render's base_color / metallic AOVs where it has them, as `ssrcl trace`
+// does with them loaded; 0: without, specular colour alone),
 // hitroughness, spp, reuse, denoise, prefilter, tracer, step, seed,
 // stride, iterations, form (incident, the default: our pass times E(F0 = 1) here; glossy-pass: the
 // pass `ssrcl trace --output-form glossy-pass` writes, compared with Cycles as it is, F0 from the
@@ -49,6 +51,7 @@ struct Config {
   std::string label;
   bool eevee = false;
   bool glossyPasses = true;  // base and specular from the render's glossy passes, as `ssrcl trace` reads them
+  bool materials = true;     // the render's material AOVs, where it has them, for those hits
   bool glossyPassForm = false;  // score the glossy-pass output form
   bool fill = true;             // with --environment: misses take it (fill=0: the premultiplied pass)
   size_t views = 0;             // auxiliary views used (SIZE_MAX: all found)
@@ -91,6 +94,8 @@ Config parseConfig(const std::string& spec) {
       s.thicknessMaxRelative = std::stof(value);
     } else if (key == "hits") {  // screen | bounce: how hits on glossy pixels are shaded
       c.glossyPasses = value == "bounce";
+    } else if (key == "materials") {
+      c.materials = value == "1";
     } else if (key == "hitroughness") {
       s.glossyHitRoughness = std::stof(value);
     } else if (key == "spp") {
@@ -253,14 +258,8 @@ int main(int argc, char** argv) {
       // For the glossy-pass form: the render's material AOVs (samples/blender/
       // make_tinted_glossy_scene.py), or the corpus's white metal, F0 = 1; and Cycles unscaled.
       ssrcl::GBuffer withF0 = ref.gbuffer;
-      ssrcl::GBufferSource materialSource;
-      materialSource.file = scenes[s].path;
-      materialSource.baseColorChannels = "ViewLayer.base_color.R,ViewLayer.base_color.G,ViewLayer.base_color.B";
-      materialSource.metallicChannel = "ViewLayer.metallic.X";
       try {
-        const ssrcl::GBuffer m = ssrcl::loadGBuffer(materialSource);
-        withF0.baseColor = m.baseColor;
-        withF0.metallic = m.metallic;
+        withF0 = ssrcl::test::withMaterialAovs(ref.gbuffer, scenes[s].path);
       } catch (const ssrcl::Error&) {  // no material AOVs: the corpus's rule
         withF0.f0 = ssrcl::Image(withF0.color.width, withF0.color.height, 3);
         std::fill(withF0.f0.data.begin(), withF0.f0.data.end(), 1.0f);
@@ -284,6 +283,9 @@ int main(int argc, char** argv) {
         const ssrcl::Image none;
         pipeline.setImage("base", configs[c].glossyPasses ? ref.gbuffer.base : none);
         pipeline.setImage("specular", configs[c].glossyPasses ? ref.gbuffer.specular : none);
+        const bool materials = configs[c].materials && withF0.f0.empty();  // the render's own AOVs
+        pipeline.setImage("base_color", materials ? withF0.baseColor : none);
+        pipeline.setImage("metallic", materials ? withF0.metallic : none);
         pipeline.settings() = configs[c].settings;
         const ssrcl::EnvironmentMap noEnvironment;
         pipeline.setEnvironment(configs[c].fill ? environment : noEnvironment);

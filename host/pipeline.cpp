@@ -12,6 +12,7 @@
 #include "settings_validation.hpp"
 #include "setup_stage.hpp"
 #include "ssrcl/error.hpp"
+#include "ssrcl/specular_albedo.hpp"
 #include "thickness_stage.hpp"
 #include "trace_stage.hpp"
 #include "view_stage.hpp"
@@ -39,7 +40,8 @@ struct Pipeline::Impl {
   TraceSettings committedSettings;
   FrameShape frame;
   int colorChannels = 0;
-  bool hasBase = false;
+  bool hasBase = false, hasMaterials = false;
+  std::vector<float> hitF0;  // each pixel's F0 with material passes, packed for the trace
   std::map<std::string, PipelineInputs::Shape> committedInputs;  // new images of these shapes need no commit
   // Each view's images are uploaded and its setup, HZB, colours and thickness computed once, at
   // the first execute() after its setView or a commit that changed kernels or buffers: a batch's
@@ -66,7 +68,24 @@ struct Pipeline::Impl {
   void plan();
   void run();
   void report(double fraction);
+  const float* packHitF0();
 };
+
+// Each pixel's F0 for the trace's hits on glossy pixels: the "f0" image clamped to [0, 1], or
+// Principled's from "base_color" and "metallic", as the glossy-pass form reads them.
+const float* Pipeline::Impl::packHitF0() {
+  const size_t pixels = frame.pixels();
+  const bool given = inputs.has("f0");
+  const float* color = inputs.pixels(given ? "f0" : "base_color");
+  const float* metallic = given ? nullptr : inputs.pixels("metallic");
+  hitF0.resize(3 * pixels);
+  for (size_t i = 0; i < pixels; ++i) {
+    const glm::dvec3 f0 =
+        principledF0({color[3 * i], color[3 * i + 1], color[3 * i + 2]}, metallic ? metallic[i] : 1.0);
+    for (int c = 0; c < 3; ++c) hitF0[3 * i + c] = float(f0[c]);
+  }
+  return hitF0.data();
+}
 
 // Validates, then configures the stages (kernels of the settings' variants), plans and allocates
 // their buffers (reusing what an earlier commit allocated at the same sizes) and binds them.
@@ -80,15 +99,16 @@ void Pipeline::Impl::plan() {
   Device::Impl& d = DeviceAccess::impl(device);
   const int channels = inputs.view("color").channels;
   const bool base = inputs.has("base");
-  const bool reconfigure = !configured || settings != committedSettings || base != hasBase || environmentChanged ||
-                           views.size() != committedViews;
+  const bool materials = inputs.has("f0") || inputs.has("base_color");
+  const bool reconfigure = !configured || settings != committedSettings || base != hasBase ||
+                           materials != hasMaterials || environmentChanged || views.size() != committedViews;
   const int viewCount = static_cast<int>(views.size());
   if (reconfigure) {
     setup.configure(d);
     thickness.configure(d, settings);
     hzb.configure(d);
     colors.configure(d, settings);
-    trace.configure(d, settings, base, viewCount > 0);
+    trace.configure(d, settings, base, materials, viewCount > 0);
     resolve.configure(d, settings, viewCount);
     viewStage.configure(d, settings, views.size());
     filter.configure(d, settings);
@@ -100,6 +120,7 @@ void Pipeline::Impl::plan() {
   frame = FrameShape(camera.width, camera.height);
   colorChannels = channels;
   hasBase = base;
+  hasMaterials = materials;
   committedSettings = settings;
   committedInputs = inputs.shapes();
   committedViews = views.size();
@@ -164,7 +185,8 @@ void Pipeline::Impl::run() {
                 {inputs.pixels("color"), inputs.pixels("depth"), inputs.pixels("normal"),
                  roughnessImage ? inputs.pixels("roughness") : nullptr},
                 SetupStage::params(frame, cam, s, colorChannels), events);
-  trace.upload(q, hasBase ? inputs.pixels("base") : nullptr, hasBase ? inputs.pixels("specular") : nullptr, events);
+  trace.upload(q, hasBase ? inputs.pixels("base") : nullptr, hasBase ? inputs.pixels("specular") : nullptr,
+               hasBase && hasMaterials ? packHitF0() : nullptr, events);
   stage = "hzb";
   hzb.enqueue(q, events);
   stage = "color_mips";
@@ -270,6 +292,9 @@ void Pipeline::setGBuffer(const GBuffer& gbuffer) {
   if (!gbuffer.roughness.empty()) setImage("roughness", gbuffer.roughness);
   if (!gbuffer.base.empty()) setImage("base", gbuffer.base);
   if (!gbuffer.specular.empty()) setImage("specular", gbuffer.specular);
+  if (!gbuffer.f0.empty()) setImage("f0", gbuffer.f0);
+  if (!gbuffer.baseColor.empty()) setImage("base_color", gbuffer.baseColor);
+  if (!gbuffer.metallic.empty()) setImage("metallic", gbuffer.metallic);
 }
 
 void Pipeline::setView(int index, const GBuffer& gbuffer, const Camera& camera, const std::string& label,

@@ -13,13 +13,27 @@ struct InputKind {
   const char* name;
   int channels;  // colour takes 3 or 4
 };
-constexpr std::array<InputKind, 6> kInputs = {{{"color", 3}, {"depth", 1}, {"normal", 3}, {"roughness", 1},
-                                               {"base", 3}, {"specular", 3}}};
+constexpr std::array<InputKind, 9> kInputs = {{{"color", 3},
+                                               {"depth", 1},
+                                               {"normal", 3},
+                                               {"roughness", 1},
+                                               {"base", 3},
+                                               {"specular", 3},
+                                               {"f0", 3},
+                                               {"base_color", 3},
+                                               {"metallic", 1}}};
+
+// Inputs a frame may go without.
+bool optional(const std::string& name, const TraceSettings& s) {
+  return (name == "roughness" && s.constantRoughness) || name == "base" || name == "specular" || name == "f0" ||
+         name == "base_color" || name == "metallic";
+}
 
 void checkName(const std::string& name) {
   if (std::none_of(kInputs.begin(), kInputs.end(), [&](const InputKind& k) { return name == k.name; }))
     throw Error(ErrorCode::InvalidArgument,
-                "unknown input image '" + name + "' (expected color, depth, normal, roughness, base or specular)");
+                "unknown input image '" + name +
+                    "' (expected color, depth, normal, roughness, base, specular, f0, base_color or metallic)");
 }
 
 std::string shapeText(const PipelineInputs::Shape& s) {
@@ -54,10 +68,14 @@ const float* PipelineInputs::pixels(const std::string& name) { return packedFloa
 void PipelineInputs::validate(const Camera& camera, const TraceSettings& s) const {
   if (has("base") != has("specular"))
     throw Error(ErrorCode::InvalidArgument, "pipeline: input images 'base' and 'specular' go together");
+  if (has("base_color") != has("metallic"))
+    throw Error(ErrorCode::InvalidArgument, "pipeline: input images 'base_color' and 'metallic' go together");
+  if (has("f0") && has("base_color"))
+    throw Error(ErrorCode::InvalidArgument, "pipeline: set input image 'f0' or 'base_color' and 'metallic', not both");
   for (const InputKind& kind : kInputs) {
     const std::string name = kind.name;
     if (!has(name)) {
-      if ((name == "roughness" && s.constantRoughness) || name == "base" || name == "specular") continue;
+      if (optional(name, s)) continue;
       throw Error(ErrorCode::InvalidArgument, "pipeline: input image '" + name + "' not set");
     }
     const ImageView v = view(name);

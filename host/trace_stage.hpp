@@ -2,7 +2,9 @@
 // Ray generation and tracing (kernels/trace.cl): rays for the listed pixels, traced through the
 // depth buffer by the tracer the settings name (a program variant), shaded at their hits. Owns the
 // ray records the resolve reads, the optional base/specular passes and the counting mode's
-// counters. Samples are traced in batches when all of them would not fit the record budget.
+// counters, and with material passes each pixel's F0 and the table of the specular lobe's albedo
+// E that shades hits on glossy pixels. Samples are traced in batches when all of them would not
+// fit the record budget.
 #include "color_pyramid_stage.hpp"
 #include "setup_stage.hpp"
 
@@ -13,12 +15,14 @@ std::string tracerDefine(Tracer t);
 
 class TraceStage {
  public:
-  // With views, the trace also writes each ray's state (rayState) for the view stage.
-  void configure(Device::Impl& device, const TraceSettings& s, bool hasBase, bool views);
+  // With views, the trace also writes each ray's state (rayState) for the view stage. With
+  // `materials` (and base): hits on glossy pixels are shaded with their F0 (kernels/trace.cl).
+  void configure(Device::Impl& device, const TraceSettings& s, bool hasBase, bool materials, bool views);
   void plan(DeviceBuffers& buffers, const FrameShape& frame);
   void bind(const SetupStage& setup, const HzbStage& hzb, const ColorPyramidStage& colors);
-  // Uploads base and specular (packed floats, when set) and clears the counters (counting mode).
-  void upload(cl::CommandQueue& q, const float* base, const float* specular, StageEvents& events);
+  // Uploads base and specular, and F0 with materials (packed floats, when set; F0 in [0, 1]), and
+  // clears the counters (counting mode).
+  void upload(cl::CommandQueue& q, const float* base, const float* specular, const float* f0, StageEvents& events);
   // One batch: samples [params.first_sample, + batchSize()) of the `listed` pixels.
   void enqueue(cl::CommandQueue& q, const TraceParams& params, StageEvents& events);
   // Counting mode: texel reads and the iteration histogram into `times` (waits for the queue).
@@ -31,11 +35,11 @@ class TraceStage {
   cl::Buffer rayState;                       // per (pixel, batch slot), with views (SSRCL_RAY_*)
 
  private:
-  bool hasBase_ = false, counting_ = false, views_ = false;
+  bool hasBase_ = false, materials_ = false, counting_ = false, views_ = false;
   int batch_ = 1;
   FrameShape frame_;
   cl::Kernel kernel_;
-  cl::Buffer baseIn_, specularIn_, workCounters_;
+  cl::Buffer baseIn_, specularIn_, f0In_, albedoTable_, workCounters_;
 };
 
 }  // namespace ssrcl::detail

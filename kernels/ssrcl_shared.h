@@ -44,6 +44,12 @@ typedef uint ssrcl_uint;
 #define SSRCL_ROUGHNESS_SQUARED 0
 #define SSRCL_ROUGHNESS_LINEAR 1
 
+// The specular lobe's directional albedo E = F0 * scale + bias (include/ssrcl/specular_albedo.hpp)
+// for hits on glossy surfaces with material passes (SSRCL_MATERIAL_HITS): (scale, bias) pairs over
+// sqrt(GGX alpha) (rows) and sqrt(cos theta_o) (columns), SSRCL_ALBEDO_STEPS steps each from 0 to
+// 1 inclusive. Square roots put the nodes where E bends: smooth lobes and grazing angles.
+#define SSRCL_ALBEDO_STEPS 32
+
 // One level of the HZB and colour pyramids: offset into the packed mip buffer and its size.
 typedef struct {
   ssrcl_int offset;

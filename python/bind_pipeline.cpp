@@ -145,15 +145,22 @@ void bindPipeline(py::module_& m) {
           },
           py::arg("name"), py::arg("image"),
           "An input as an HxWxC array (HxW for one channel): color (3 or 4), depth, normal, roughness, base, "
-          "specular. float32 and float16 arrays of any positive strides are read where they are (no copy) at "
-          "commit() and execute(), so keep them unchanged until then; other dtypes and layouts are converted once.")
+          "specular, f0 (3) or base_color (3) and metallic. float32 and float16 arrays of any positive strides "
+          "are read where they are (no copy) at commit() and execute(), so keep them unchanged until then; other "
+          "dtypes and layouts are converted once.")
       .def(
           "setFrame",
           [](PythonPipeline& p, std::shared_ptr<cli::Frame> frame) {
             const GBuffer& g = frame->gbuffer;
-            const std::pair<const char*, const Image*> passes[] = {{"color", &g.color},       {"depth", &g.depth},
-                                                                   {"normal", &g.normal},     {"roughness", &g.roughness},
-                                                                   {"base", &g.base},         {"specular", &g.specular}};
+            const std::pair<const char*, const Image*> passes[] = {{"color", &g.color},
+                                                                   {"depth", &g.depth},
+                                                                   {"normal", &g.normal},
+                                                                   {"roughness", &g.roughness},
+                                                                   {"base", &g.base},
+                                                                   {"specular", &g.specular},
+                                                                   {"f0", &g.f0},
+                                                                   {"base_color", &g.baseColor},
+                                                                   {"metallic", &g.metallic}};
             for (const auto& [name, image] : passes)  // shares the frame's pixels, no copy
               if (!image->empty())
                 p.setImage(name, ImageView(image->data.data(), image->width, image->height, image->channels),

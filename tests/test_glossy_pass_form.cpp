@@ -324,14 +324,7 @@ TEST(GlossyPassForm, DefaultFormOfAGBuffer) {
 TEST(GlossyPassForm, MatchesCyclesOnATintedFloor) {
   const std::string exr = std::string(SSRCL_SOURCE_DIR) + "/samples/blender/tinted_glossy/tinted_glossy.exr";
   const ssrcl::test::CyclesReference ref = ssrcl::test::loadCyclesReference(exr);
-  ssrcl::GBufferSource material;
-  material.file = exr;
-  material.baseColorChannels = "ViewLayer.base_color.R,ViewLayer.base_color.G,ViewLayer.base_color.B";
-  material.metallicChannel = "ViewLayer.metallic.X";
-  ssrcl::GBuffer g = ref.gbuffer;
-  const ssrcl::GBuffer m = ssrcl::loadGBuffer(material);
-  g.baseColor = m.baseColor;
-  g.metallic = m.metallic;
+  const ssrcl::GBuffer g = ssrcl::test::withMaterialAovs(ref.gbuffer, exr);
 
   ssrcl::Device device = ssrcl::test::testDevice();
   ssrcl::Pipeline pipeline(device);

@@ -58,6 +58,7 @@ struct GBufferSource {
 
   // For the glossy-pass output form (glossy_pass_form.hpp), read only when named: the specular
   // colour at normal incidence (3 channels), or Principled base colour (3) and metallic (1).
+  // With base and specular, Pipeline::setGBuffer also shades hits on glossy surfaces with them.
   // Full channel names, comma-separated; `materialFile` empty reads them from `file`.
   std::string f0Channels, baseColorChannels, metallicChannel;
   std::string materialFile;

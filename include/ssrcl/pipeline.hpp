@@ -71,9 +71,14 @@ struct TraceSettings {
   // Hits on pixels smoother than this are hits on glossy surfaces, whose screen colour is what
   // they reflect toward the camera. With the "base" and "specular" images set, such a hit's
   // radiance is base + specular * (what one more ray reflected at the hit finds), the screen colour
-  // where that ray leaves the screen; without them, or at 0, hits take the screen colour.
+  // where that ray leaves the screen; without them, or at 0, hits take the screen colour. With
+  // material images too ("f0", or "base_color" and "metallic"), what that ray finds is weighted
+  // by the hit's Fresnel, E(its F0, its roughness, toward the reflecting pixel) (specular_albedo.hpp),
+  // as Cycles' GlossCol (about 1) leaves it out; where the ray finds nothing the guess is the
+  // glossy light the camera sees there times E(toward the pixel) / E(toward the camera), at
+  // most 1 (docs/BENCHMARKS.md, "Hits on glossy surfaces").
   // 1 = every hit that is not fully rough: any glossy component is view-dependent, whatever its
-  // roughness (docs/BENCHMARKS.md, "Hits on glossy surfaces").
+  // roughness.
   float glossyHitRoughness = 1.0f;
 
   int samplesPerPixel = 4;  // rays per glossy pixel
@@ -161,7 +166,9 @@ enum class ViewTime { Same, Other };
 // the far plane or not finite mean "no surface"), normal 3 (world space), roughness 1 (not read
 // when settings().constantRoughness is set). Optional, together: base 3 (each pixel's radiance
 // without its specular reflection, e.g. Combined minus Glossy) and specular 3 (its specular
-// colour), for hits on glossy surfaces (TraceSettings::glossyHitRoughness).
+// colour), for hits on glossy surfaces (TraceSettings::glossyHitRoughness); with them, the
+// material: f0 3 (specular colour at normal incidence, clamped to [0, 1]) or, together,
+// base_color 3 and metallic 1 (Principled's, F0 = mix(0.04, base colour, metallic)).
 //
 // Images set after commit() with the committed size and channels are read by the next execute()
 // without another commit (OIDN's way): a sequence sets each frame's images and executes. Another

@@ -76,6 +76,17 @@ CyclesReference loadCyclesReference(const std::string& exr, const std::string& c
   return ref;
 }
 
+GBuffer withMaterialAovs(GBuffer gbuffer, const std::string& exr) {
+  GBufferSource material;
+  material.file = exr;
+  material.baseColorChannels = "ViewLayer.base_color.R,ViewLayer.base_color.G,ViewLayer.base_color.B";
+  material.metallicChannel = "ViewLayer.metallic.X";
+  GBuffer m = loadGBuffer(material);
+  gbuffer.baseColor = std::move(m.baseColor);
+  gbuffer.metallic = std::move(m.metallic);
+  return gbuffer;
+}
+
 ReferenceError referenceError(const CyclesReference& ref, const Image& reflection, const std::vector<size_t>& group) {
   double se = 0, seLow = 0, abs = 0, signedSum = 0;
   std::vector<double> perPixel;

@@ -34,6 +34,11 @@ struct CyclesReference {
 CyclesReference loadCyclesReference(const std::string& exr, const std::string& cameraJson = {},
                                     double specular = 1.0);
 
+// `gbuffer` with the render's Principled material AOVs added (Blender's base_color colour and
+// metallic value, the names `ssrcl trace --output-form glossy-pass` reads by default). Throws
+// ssrcl::Error naming the channel where the render has none.
+GBuffer withMaterialAovs(GBuffer gbuffer, const std::string& exr);
+
 // Error of E * our rgb against Cycles over a group of reference pixels.
 struct ReferenceError {
   double rmse = 0, meanAbs = 0;
