@@ -111,7 +111,7 @@ struct TraceSettings {
 };
 // Throws Error(InvalidArgument) naming the first parameter out of its range (commit() does too).
 void validateSettings(const TraceSettings& settings);
-// Field by field (a new field joins them in host/settings_validation.cpp).
+// Field by field (a new field joins them in host/pipeline/settings_validation.cpp).
 bool operator==(const TraceSettings& a, const TraceSettings& b);
 bool operator!=(const TraceSettings& a, const TraceSettings& b);
 
