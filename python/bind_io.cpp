@@ -6,15 +6,13 @@
 #include <string>
 
 #include "bindings.hpp"
-#include "gbuffer_input.hpp"
 #include "numpy_image.hpp"
 #include "ssrcl/exr_output.hpp"
+#include "ssrcl/frame.hpp"
 #include "ssrcl/glossy_pass_form.hpp"
 
 namespace ssrcl::python {
 namespace {
-
-using cli::Frame;
 
 // A frame's pass as a read-only view kept alive by the frame; None where the frame has none.
 template <Image GBuffer::*pass>
@@ -28,18 +26,24 @@ Frame loadFrame(const std::string& path, const std::string& camera, const std::s
                 const std::string& roughnessChannel, const std::string& position, bool glossyPasses, bool inputCheck,
                 const std::string& outputForm, const std::string& f0Channels, const std::string& baseColorChannels,
                 const std::string& metallicChannel, const std::string& materialFile, std::optional<double> fov) {
-  cli::GBufferInputOptions o;
-  o.renderer = renderer;
-  o.depthKind = depthKind;
-  o.normalSpace = normalSpace;
-  o.roughness = roughness;
-  o.source.roughnessChannel = roughnessChannel;
-  o.source.positionChannels = position;
-  o.source.glossyPasses = glossyPasses;
-  o.inputCheck = inputCheck;
-  o.fov = fov;
-  o.form = {outputForm, f0Channels, baseColorChannels, metallicChannel, materialFile};
-  return cli::loadFrame(o, path, camera.empty() ? cli::sidecarCameraPath(path) : camera, camera.empty());
+  FrameSource s;
+  s.file = path;
+  s.camera = camera;
+  s.renderer = renderer;
+  if (!depthKind.empty()) s.depthKind = depthKindNamed(depthKind);
+  if (!normalSpace.empty()) s.normalSpace = normalSpaceNamed(normalSpace);
+  s.readRoughness = !roughness;
+  s.roughnessChannel = roughnessChannel;
+  s.positionChannels = position;
+  s.glossyPasses = glossyPasses;
+  s.inputCheck = inputCheck;
+  s.fov = fov;
+  s.outputForm = outputFormNamed(outputForm);
+  s.f0Channels = f0Channels;
+  s.baseColorChannels = baseColorChannels;
+  s.metallicChannel = metallicChannel;
+  s.materialFile = materialFile;
+  return ssrcl::loadFrame(s);
 }
 
 void writeExr(const std::string& path, const FloatArray& rgba, const FloatArray& distance, const std::string& layer,

@@ -9,7 +9,6 @@
 #include "bench_roofline.hpp"
 #include "bench_runner.hpp"
 #include "commands.hpp"
-#include "device_option.hpp"
 #include "exit_codes.hpp"
 #include "settings_options.hpp"
 

@@ -1,33 +1,6 @@
 #include "output_form_options.hpp"
 
-#include "ssrcl/error.hpp"
-
 namespace ssrcl::cli {
-
-void OutputFormOptions::nameMaterialPasses(GBufferSource& source) const {
-  if (resolved() != OutputForm::GlossyPass) {
-    if (!f0Channels.empty() || !baseColorChannels.empty() || !metallicChannel.empty() || !materialFile.empty())
-      throw Error(ErrorCode::InvalidArgument,
-                  "--f0-channels, --base-color-channels, --metallic-channel and --material only apply with "
-                  "--output-form glossy-pass");
-    return;
-  }
-  source.materialFile = materialFile;
-  if (!f0Channels.empty()) {
-    if (!baseColorChannels.empty() || !metallicChannel.empty())
-      throw Error(ErrorCode::InvalidArgument,
-                  "give --f0-channels or --base-color-channels/--metallic-channel, not both");
-    source.f0Channels = f0Channels;
-    return;
-  }
-  const std::string prefix = source.layer.empty() ? "" : source.layer + ".";
-  source.baseColorChannels = !baseColorChannels.empty()
-                                 ? baseColorChannels
-                                 : prefix + "base_color.R," + prefix + "base_color.G," + prefix + "base_color.B";
-  source.metallicChannel = !metallicChannel.empty() ? metallicChannel
-                           : prefix.empty()        ? std::string("metallic")
-                                                   : prefix + "metallic.X";
-}
 
 void addOutputFormOptions(CLI::App& cmd, OutputFormOptions& o) {
   const char* g = "Output";
