@@ -1,7 +1,7 @@
 # Writes every kernels/*.cl and *.h file into one C++ source as a name -> text table.
 file(GLOB files ${KERNEL_DIR}/*.cl ${KERNEL_DIR}/*.h)
 list(SORT files)
-set(body "// Generated from kernels/*.cl by cmake/embed_kernels.cmake; do not edit.\n#include \"embedded_kernels.hpp\"\n#include <stdexcept>\nnamespace ssrcl::detail {\nconst std::vector<EmbeddedKernel>& embeddedKernels() {\n  static const std::vector<EmbeddedKernel> table = {\n")
+set(body "// Generated from kernels/*.cl by cmake/embed_kernels.cmake; do not edit.\n#include \"pipeline/embedded_kernels.hpp\"\n#include <stdexcept>\nnamespace ssrcl::detail {\nconst std::vector<EmbeddedKernel>& embeddedKernels() {\n  static const std::vector<EmbeddedKernel> table = {\n")
 foreach(f ${files})
   get_filename_component(name ${f} NAME)
   file(READ ${f} text)

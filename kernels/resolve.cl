@@ -6,7 +6,7 @@
 #ifndef SSRCL_VIEWS
 #define SSRCL_VIEWS 0
 #endif
-// SSRCL_RESOLVE_RAY_STRIDE (host/stage_support.hpp resolveRayStride): of a similar neighbour's
+// SSRCL_RESOLVE_RAY_STRIDE (host/pipeline/stage_support.hpp resolveRayStride): of a similar neighbour's
 // rays one share in this many (1: all), the pixel's own rays all.
 
 // Glossy pixels use the ratio estimator of Stachowiak ("Stochastic Screen-Space Reflections",

@@ -2,7 +2,7 @@
 // parameters as one struct (passed by value, FidelityFX SSSR's constants block), compiled by both
 // sides so they cannot drift apart. Plain C: only 4-byte scalars and arrays of them, so the layout
 // is the same on the host and every OpenCL device. Variants (tracer, roughness mapping, counting
-// mode) are not parameters but compile-time defines (host/program_cache.hpp keys programs by them).
+// mode) are not parameters but compile-time defines (host/pipeline/device_impl.hpp keys programs by them).
 #ifndef SSRCL_SHARED_H
 #define SSRCL_SHARED_H
 
@@ -16,7 +16,7 @@ typedef int ssrcl_int;
 typedef uint ssrcl_uint;
 #endif
 
-// Vector literals in the files the host compiles too (ggx.cl, sequence.cl; host/opencl_c_on_host.hpp
+// Vector literals in the files the host compiles too (ggx.cl, sequence.cl; host/pipeline/opencl_c_on_host.hpp
 // defines them for C++, where `(float3)(x, y, z)` would silently be a cast of a comma expression).
 #ifdef __OPENCL_VERSION__
 #define SSRCL_FLOAT2(x, y) ((float2)(x, y))

@@ -1,7 +1,6 @@
 #include <pybind11/stl.h>
 
 #include "bindings.hpp"
-#include "device_option.hpp"
 #include "ssrcl/device.hpp"
 
 namespace ssrcl::python {
@@ -25,7 +24,7 @@ void bindDevice(py::module_& m) {
                      "An OpenCL device: Device() the preferred one, Device('cpu'), Device('gpu'), or Device(index) "
                      "from devices(). Share one among pipelines.")
       .def(py::init<int>(), py::arg("index"))
-      .def(py::init(&cli::openDevice), py::arg("kind") = "default")
+      .def(py::init(&openDevice), py::arg("kind") = "default")
       .def_property_readonly("info", &Device::info);
 }
 

@@ -6,15 +6,13 @@
 #include <string>
 
 #include "bindings.hpp"
-#include "gbuffer_input.hpp"
 #include "numpy_image.hpp"
 #include "ssrcl/exr_output.hpp"
+#include "ssrcl/frame.hpp"
 #include "ssrcl/glossy_pass_form.hpp"
 
 namespace ssrcl::python {
 namespace {
-
-using cli::Frame;
 
 // A frame's pass as a read-only view kept alive by the frame; None where the frame has none.
 template <Image GBuffer::*pass>
@@ -28,19 +26,24 @@ Frame loadFrame(const std::string& path, const std::string& camera, const std::s
                 const std::string& roughnessChannel, const std::string& position, bool glossyPasses, bool inputCheck,
                 const std::string& outputForm, const std::string& f0Channels, const std::string& baseColorChannels,
                 const std::string& metallicChannel, const std::string& materialFile, std::optional<double> fov) {
-  cli::GBufferInputOptions o;
-  o.renderer = renderer;
-  o.depthKind = depthKind;
-  o.normalSpace = normalSpace;
-  o.roughness = roughness;
-  o.source.roughnessChannel = roughnessChannel;
-  o.source.positionChannels = position;
-  o.source.glossyPasses = glossyPasses;
-  o.inputCheck = inputCheck;
-  o.fov = fov;
-  o.form = {outputForm, f0Channels, baseColorChannels, metallicChannel, materialFile};
-  cli::settleOutputForm(o, path, nullptr);
-  return cli::loadFrame(o, path, camera.empty() ? cli::sidecarCameraPath(path) : camera, camera.empty());
+  FrameSource s;
+  s.file = path;
+  s.camera = camera;
+  s.renderer = renderer;
+  if (!depthKind.empty()) s.depthKind = depthKindNamed(depthKind);
+  if (!normalSpace.empty()) s.normalSpace = normalSpaceNamed(normalSpace);
+  s.readRoughness = !roughness;
+  s.roughnessChannel = roughnessChannel;
+  s.positionChannels = position;
+  s.glossyPasses = glossyPasses;
+  s.inputCheck = inputCheck;
+  s.fov = fov;
+  if (!outputForm.empty()) s.outputForm = outputFormNamed(outputForm);  // else chooseOutputForm decides
+  s.f0Channels = f0Channels;
+  s.baseColorChannels = baseColorChannels;
+  s.metallicChannel = metallicChannel;
+  s.materialFile = materialFile;
+  return ssrcl::loadFrame(s);
 }
 
 void writeExr(const std::string& path, const FloatArray& rgba, const FloatArray& distance, const std::string& layer,
@@ -89,10 +92,10 @@ void bindIo(py::module_& m) {
   m.def(
       "defaultOutputForm",
       [](const std::string& path, const std::string& renderer) {
-        cli::GBufferInputOptions o;
-        o.renderer = renderer;
-        cli::settleOutputForm(o, path, nullptr);
-        return o.form.form;
+        FrameSource s;
+        s.file = path;
+        s.renderer = renderer;
+        return std::string(outputFormName(chooseOutputForm(s).form));
       },
       py::arg("path"), py::arg("renderer") = "blender",
       "The output form `ssrcl trace` gives the pass of this G-buffer EXR when no --output-form is given: "

@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "bindings.hpp"
-#include "gbuffer_input.hpp"
 #include "numpy_image.hpp"
+#include "ssrcl/frame.hpp"
 #include "ssrcl/pipeline.hpp"
 
 namespace ssrcl::python {
@@ -150,7 +150,7 @@ void bindPipeline(py::module_& m) {
           "dtypes and layouts are converted once.")
       .def(
           "setFrame",
-          [](PythonPipeline& p, std::shared_ptr<cli::Frame> frame) {
+          [](PythonPipeline& p, std::shared_ptr<Frame> frame) {
             const GBuffer& g = frame->gbuffer;
             const std::pair<const char*, const Image*> passes[] = {{"color", &g.color},
                                                                    {"depth", &g.depth},
@@ -170,7 +170,7 @@ void bindPipeline(py::module_& m) {
           py::arg("frame"), "Every pass of a loadFrame() result and its camera, as `ssrcl trace` sets them.")
       .def(
           "setView",
-          [](PythonPipeline& p, int index, std::shared_ptr<cli::Frame> frame, const std::string& label,
+          [](PythonPipeline& p, int index, std::shared_ptr<Frame> frame, const std::string& label,
              bool otherTime) {
             p.setView(index, std::shared_ptr<const GBuffer>(frame, &frame->gbuffer), frame->camera, label,
                       otherTime ? ViewTime::Other : ViewTime::Same);

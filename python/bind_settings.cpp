@@ -3,17 +3,19 @@
 #include <string>
 
 #include "bindings.hpp"
-#include "settings_json.hpp"
+#include <nlohmann/json.hpp>
 #include "ssrcl/pipeline.hpp"
 
 namespace ssrcl::python {
 namespace {
 
-// Every field's name, from the record the CLI writes into each output (tools/settings_json.cpp
-// lists every field), so keyword checks and the bound attributes cannot drift apart unseen
-// (tests/python/test_ssrcl.py compares them).
+// Every field, from the record the CLI writes into each output (settingsJson lists every field),
+// so keyword checks and the bound attributes cannot drift apart unseen (tests/python/test_ssrcl.py
+// compares them).
+nlohmann::ordered_json fieldsOf(const TraceSettings& s) { return nlohmann::ordered_json::parse(settingsJson(s)); }
+
 std::string knownFields() {
-  const auto fields = cli::settingsJson(TraceSettings{});
+  const auto fields = fieldsOf(TraceSettings{});
   std::string names;
   for (const auto& item : fields.items()) names += (names.empty() ? "" : ", ") + item.key();
   return names;
@@ -35,7 +37,7 @@ void bindSettings(py::module_& m) {
                                 "with the library's defaults (include/ssrcl/pipeline.hpp documents each).");
   cls.def(py::init([](const py::kwargs& kwargs) {
             TraceSettings settings;
-            const auto known = cli::settingsJson(settings);
+            const auto known = fieldsOf(settings);
             py::object target = py::cast(&settings, py::return_value_policy::reference);
             for (const auto& [key, value] : kwargs) {
               const std::string name = py::str(key);
@@ -71,12 +73,12 @@ void bindSettings(py::module_& m) {
       .def_readwrite("classifyWork", &TraceSettings::classifyWork)
       .def_readwrite("environmentRotation", &TraceSettings::environmentRotation)
       .def_readwrite("environmentIntensity", &TraceSettings::environmentIntensity)
-      .def("json", [](const TraceSettings& s) { return cli::settingsJson(s).dump(); },
+      .def("json", [](const TraceSettings& s) { return settingsJson(s); },
            "Every field as JSON, as `ssrcl trace` records it in the output's ssrcl/settings attribute.")
-      .def("__eq__", [](const TraceSettings& a, const TraceSettings& b) { return cli::settingsJson(a) == cli::settingsJson(b); })
+      .def("__eq__", [](const TraceSettings& a, const TraceSettings& b) { return settingsJson(a) == settingsJson(b); })
       .def("__copy__", [](const TraceSettings& s) { return s; })
       .def("__deepcopy__", [](const TraceSettings& s, const py::dict&) { return s; })
-      .def("__repr__", [](const TraceSettings& s) { return "TraceSettings(" + cli::settingsJson(s).dump() + ")"; });
+      .def("__repr__", [](const TraceSettings& s) { return "TraceSettings(" + settingsJson(s) + ")"; });
 
   m.def("qualityPreset", &qualityPreset, py::arg("name"),
         "The settings of a named preset: draft, medium (the defaults), high or reference.");

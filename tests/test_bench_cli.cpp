@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <nlohmann/json.hpp>
 
 #include "scenes/analytic_scene.hpp"
@@ -166,6 +167,25 @@ TEST(BenchCli, BadOptionsAreUsageErrors) {
   r = runCommand(cli("bench --scene half_sky --size 64x32 --no-reference --plot /tmp/never.svg"));
   EXPECT_EQ(r.exitCode, 2) << r.output;
   EXPECT_NE(r.output.find("never.svg"), std::string::npos) << r.output;
+}
+
+// The native roofline is a program of bench/, not of the installed CLI: `ssrcl bench --roofline`
+// says where it is, and that program prints its table with the OpenCL and native hits agreeing
+// (they trace the same rays: test_native_roofline).
+TEST(BenchCli, RooflineIsTheBenchProgram) {
+  auto r = runCommand(cli("bench --scene mirror_wall --size 64x36 --roofline"));
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+  EXPECT_NE(r.output.find("bench/ssrcl_roofline"), std::string::npos) << r.output;
+
+  const char* device = std::getenv("SSRCL_TEST_DEVICE");
+  r = runCommand(shellQuote(SSRCL_ROOFLINE) + " --scene spheres_on_mirror --scene-roughness 0 --size 96x54 " +
+                 "--repetitions 1 --device " + (device ? device : "cpu"));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  for (const char* row : {"Native roofline", "setup ", "hzb ", "trace ", "OpenCL / native"})
+    EXPECT_NE(r.output.find(row), std::string::npos) << row << "\n" << r.output;
+  const size_t at = r.output.find("hits agree on ");
+  ASSERT_NE(at, std::string::npos) << r.output;
+  EXPECT_GE(std::stod(r.output.substr(at + 14)), 99.9) << r.output;
 }
 
 }  // namespace

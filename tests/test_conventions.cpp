@@ -16,7 +16,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <map>
 
-#include "exr_header_camera.hpp"
+#include "io/exr_header_camera.hpp"
 #include "scenes/analytic_scene.hpp"
 #include "ssrcl/ssrcl.hpp"
 #include "support/exr_fixtures.hpp"

@@ -1,4 +1,4 @@
-// The device copy `ssrcl bench --roofline` sets the HZB against (bench/device_copy_time): it runs on
+// The device copy bench/ssrcl_roofline sets the HZB against (bench/device_copy_time): it runs on
 // the device the pipeline uses, and a device it cannot find is named in the error, not replaced.
 #include <gtest/gtest.h>
 

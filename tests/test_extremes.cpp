@@ -27,7 +27,7 @@
 #include <tuple>
 #include <vector>
 
-#include "device_impl.hpp"
+#include "pipeline/device_impl.hpp"
 #include "scenes/analytic_scene.hpp"
 #include "ssrcl/ssrcl.hpp"
 #include "support/test_device.hpp"

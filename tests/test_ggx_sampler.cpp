@@ -1,5 +1,5 @@
 // Statistical tests of the GGX visible-normal sampler (Heitz 2018) as kernels/ggx.cl implements it,
-// the very source the tracer compiles, here compiled for the host (host/opencl_c_on_host.hpp),
+// the very source the tracer compiles, here compiled for the host (host/pipeline/opencl_c_on_host.hpp),
 // against the double-precision textbook GGX in support/ggx_reference.hpp.
 //
 // Chi-square (the pbrt-v4 bsdfs_test approach): the sampled l are binned, each bin's expected count

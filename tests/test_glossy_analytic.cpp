@@ -547,7 +547,7 @@ TEST_P(GlossySsr, RaysFollowingRoughnessStayUnbiased) {
 // moves them on another platform).
 
 // "high" (16 rays and the edge-aware filter; the resolve takes a quarter of each neighbour's
-// rays, host/stage_support.hpp resolveRayStride): the filter must cut the error against the truth
+// rays, host/pipeline/stage_support.hpp resolveRayStride): the filter must cut the error against the truth
 // (not only smooth), without biasing it, below the unfiltered resolve of all the rays.
 TEST_P(GlossySsr, HighPresetFilterCutsTheErrorWithoutBias) {
   const GlossyCase& c = glossyCase(GetParam());

@@ -29,7 +29,7 @@
 #include <string>
 #include <vector>
 
-#include "device_impl.hpp"
+#include "pipeline/device_impl.hpp"
 #include "scenes/analytic_scene.hpp"
 #include "ssrcl/ssrcl.hpp"
 #include "support/exr_fixtures.hpp"

@@ -10,9 +10,9 @@
 #include <glm/glm.hpp>
 #include <random>
 
-#include "color_pyramid_stage.hpp"
-#include "hzb_stage.hpp"
-#include "setup_stage.hpp"
+#include "pipeline/color_pyramid_stage.hpp"
+#include "pipeline/hzb_stage.hpp"
+#include "pipeline/setup_stage.hpp"
 #include "ssrcl/ssrcl.hpp"
 #include "support/simple_camera.hpp"
 #include "support/test_device.hpp"

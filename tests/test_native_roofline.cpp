@@ -1,5 +1,5 @@
 // The OpenCL mirror pass against the native C++ implementation of the same rays
-// (bench/native_mirror_trace, the roofline of `ssrcl bench --roofline`): written separately from
+// (bench/native_mirror_trace, the roofline of bench/ssrcl_roofline): written separately from
 // the kernels, same float arithmetic, so every pixel's hit must agree but for float ties. The
 // native trace's packet form (bench/packet_hiz_trace, 16 rays in AVX-512 lanes) against its scalar
 // form, the same way.

@@ -14,7 +14,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
-#include "exr_header_camera.hpp"
+#include "io/exr_header_camera.hpp"
 #include "ssrcl/ssrcl.hpp"
 #include "support/exr_fixtures.hpp"
 #include "support/run_command.hpp"

@@ -8,7 +8,7 @@
 #include <cmath>
 #include <cstring>
 
-#include "device_impl.hpp"
+#include "pipeline/device_impl.hpp"
 #include "ssrcl/ssrcl.hpp"
 #include "support/analytic_frame.hpp"
 #include "support/test_device.hpp"

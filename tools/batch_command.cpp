@@ -8,7 +8,6 @@
 #include "batch_report.hpp"
 #include "batch_runner.hpp"
 #include "commands.hpp"
-#include "device_option.hpp"
 #include "exit_codes.hpp"
 #include "frame_sequence.hpp"
 #include "gbuffer_input.hpp"

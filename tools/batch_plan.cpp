@@ -5,8 +5,8 @@
 #include <set>
 
 #include "frame_sequence.hpp"
-#include "gbuffer_input.hpp"
 #include "ssrcl/error.hpp"
+#include "ssrcl/frame.hpp"
 
 namespace ssrcl::cli {
 namespace {

@@ -110,7 +110,7 @@ BatchRun BatchRunner::run(const std::vector<FrameJob>& jobs, std::vector<FrameOu
         f.index = todo[k];
         attempt(f, f.outcome.readSeconds, kExitUsage, [&] {
           const FrameJob& job = jobs[f.index];
-          f.frame = loadFrame(input_, job.input, job.camera, job.camera == sidecarCameraPath(job.input));
+          f.frame = loadFrame(frameSource(input_, job));
         });
         if (!read.push(std::move(f))) break;
       }
@@ -124,7 +124,7 @@ BatchRun BatchRunner::run(const std::vector<FrameJob>& jobs, std::vector<FrameOu
           const FrameJob& job = jobs[f->index];
           OutputRecord record = record_;
           record.views = f->views;
-          ReflectionExrOptions written = writerOptions(output_, record, job.input, input_.sourceFor(job.input), f->frame);
+          ReflectionExrOptions written = writerOptions(output_, record, job.input, f->frame.passes, f->frame);
           if (!f->view.empty()) written.view = &f->view;
           writeReflectionExr(job.output, f->reflection, f->distance, written);
         });

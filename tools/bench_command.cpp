@@ -6,20 +6,18 @@
 
 #include "bench_inputs.hpp"
 #include "bench_report.hpp"
-#include "bench_roofline.hpp"
 #include "bench_runner.hpp"
 #include "commands.hpp"
-#include "device_option.hpp"
 #include "exit_codes.hpp"
 #include "settings_options.hpp"
+#include "ssrcl/error.hpp"
 
 namespace ssrcl::cli {
 namespace {
 
 struct BenchOptions {
-  std::vector<std::string> files, samples, sizes{"1920x1080"};
-  std::string scene, device, json, plot, sampleDir;
-  float sceneRoughness = 0.3f;
+  BenchInputOptions inputs;
+  std::string device, json, plot;
   std::vector<std::string> qualities{"draft", "medium", "high"}, tracers{"hiz", "dda", "linear"};
   std::vector<int> sppList;
   std::vector<float> fullRaysRoughness, linearSteps;
@@ -79,33 +77,25 @@ void printScaling(std::ostream& out, const std::vector<BenchResult>& results) {
 }
 
 int runBenchCommand(const BenchOptions& o) {
-  std::vector<BenchInput> inputs;
-  for (const std::string& f : o.files) inputs.push_back(loadBenchFile(f));
-  for (const std::string& s : o.samples) inputs.push_back(loadBundledSample(s, o.sampleDir));
-  if (!o.scene.empty())
-    for (const std::string& size : o.sizes) {
-      const auto [w, h] = parseSize(size, "--size");
-      inputs.push_back(generateScene(o.scene, w, h, o.sceneRoughness));
-    }
-  if (inputs.empty())
-    for (const char* s : {"mirror", "glossy"}) inputs.push_back(loadBundledSample(s, o.sampleDir));
-
+  // The native roofline is a benchmark of the source tree, not of the installed product.
+  if (o.roofline)
+    throw Error(ErrorCode::InvalidArgument,
+                "--roofline: the native roofline is not part of the installed ssrcl; it is the program "
+                "bench/ssrcl_roofline of a build with tests, taking the inputs `ssrcl bench` takes");
+  const std::vector<BenchInput> inputs = loadBenchInputs(o.inputs);
   Device device = openDevice(o.device);
   const std::vector<BenchConfig> configs = configurations(o);
   std::vector<BenchResult> results;
-  std::vector<RooflineResult> rooflines;
   for (const BenchInput& input : inputs) {
     std::cerr << "bench: " << input.name << "..." << std::endl;
     Image reference;
     if (!o.noReference) reference = referencePass(device, input, o.referenceSpp);
     auto r = runBench(device, input, configs, o.repetitions, o.noReference ? nullptr : &reference);
     results.insert(results.end(), r.begin(), r.end());
-    if (o.roofline) rooflines.push_back(runRoofline(device, input, o.repetitions));
   }
   const std::string deviceName = device.info().name;
   printBenchTable(std::cout, results, deviceName);
-  if (!o.scene.empty() && o.sizes.size() > 1) printScaling(std::cout, results);
-  if (o.roofline) printRoofline(std::cout, rooflines);
+  if (!o.inputs.scene.empty() && o.inputs.sizes.size() > 1) printScaling(std::cout, results);
   if (!o.json.empty()) writeBenchJson(o.json, results, deviceName);
   if (!o.plot.empty()) writeBenchSvg(o.plot, results, deviceName);
   return kExitOk;
@@ -116,19 +106,7 @@ int runBenchCommand(const BenchOptions& o) {
 Action addBenchCommand(CLI::App& app) {
   auto o = std::make_shared<BenchOptions>();
   CLI::App* cmd = app.add_subcommand("bench", "Measure time and error of quality settings and tracers");
-  cmd->add_option("inputs", o->files, "G-buffer EXRs (Blender naming, <stem>.camera.json beside each)");
-  cmd->add_option("--sample", o->samples, "Bundled sample: mirror, glossy (default: both, when no input is given)")
-      ->check(CLI::IsMember({"mirror", "glossy"}));
-  cmd->add_option("--sample-dir", o->sampleDir,
-                  "Directory holding the bundled samples (mirror/, glossy/); default: share/ssrcl/samples of the "
-                  "installation")
-      ->check(CLI::ExistingDirectory);
-  cmd->add_option("--scene", o->scene, "Generated analytic scene: spheres_on_mirror, mirror_wall, half_sky");
-  cmd->add_option("--size", o->sizes, "Resolution(s) of the generated scene, e.g. 480x270 1920x1080")
-      ->capture_default_str();
-  cmd->add_option("--scene-roughness", o->sceneRoughness, "Roughness of every surface of the generated scene")
-      ->capture_default_str()
-      ->check(CLI::Range(0.0f, 1.0f));
+  addBenchInputOptions(*cmd, o->inputs);
   cmd->add_option("--quality", o->qualities, "Presets to measure")
       ->capture_default_str()
       ->check(CLI::IsMember({"draft", "medium", "high", "reference"}));
@@ -152,8 +130,7 @@ Action addBenchCommand(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::Range(1, 65536));
   cmd->add_flag("--roofline", o->roofline,
-                "Also time each input's mirror pass against a native C++ implementation of the same rays "
-                "(OpenCL / native per stage, and whether their hits agree)");
+                "Not in the installed CLI: says where the native roofline benchmark is (bench/ssrcl_roofline)");
   cmd->add_flag("--no-reference", o->noReference, "Skip the reference pass and the error columns");
   cmd->add_option("--device", o->device, "OpenCL device: index from `ssrcl devices`, cpu, gpu or default");
   cmd->add_option("--json", o->json, "Write every measurement as JSON");

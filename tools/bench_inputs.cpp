@@ -73,4 +73,34 @@ std::pair<int, int> parseSize(const std::string& text, const std::string& option
   throw Error(ErrorCode::InvalidArgument, option + ": expected WIDTHxHEIGHT (up to 16384x16384), got '" + text + "'");
 }
 
+void addBenchInputOptions(CLI::App& cmd, BenchInputOptions& o) {
+  cmd.add_option("inputs", o.files, "G-buffer EXRs (Blender naming, <stem>.camera.json beside each)");
+  cmd.add_option("--sample", o.samples, "Bundled sample: mirror, glossy (default: both, when no input is given)")
+      ->check(CLI::IsMember({"mirror", "glossy"}));
+  cmd.add_option("--sample-dir", o.sampleDir,
+                 "Directory holding the bundled samples (mirror/, glossy/); default: share/ssrcl/samples of the "
+                 "installation")
+      ->check(CLI::ExistingDirectory);
+  cmd.add_option("--scene", o.scene, "Generated analytic scene: spheres_on_mirror, mirror_wall, half_sky");
+  cmd.add_option("--size", o.sizes, "Resolution(s) of the generated scene, e.g. 480x270 1920x1080")
+      ->capture_default_str();
+  cmd.add_option("--scene-roughness", o.sceneRoughness, "Roughness of every surface of the generated scene")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0f, 1.0f));
+}
+
+std::vector<BenchInput> loadBenchInputs(const BenchInputOptions& o) {
+  std::vector<BenchInput> inputs;
+  for (const std::string& f : o.files) inputs.push_back(loadBenchFile(f));
+  for (const std::string& s : o.samples) inputs.push_back(loadBundledSample(s, o.sampleDir));
+  if (!o.scene.empty())
+    for (const std::string& size : o.sizes) {
+      const auto [w, h] = parseSize(size, "--size");
+      inputs.push_back(generateScene(o.scene, w, h, o.sceneRoughness));
+    }
+  if (inputs.empty())
+    for (const char* s : {"mirror", "glossy"}) inputs.push_back(loadBundledSample(s, o.sampleDir));
+  return inputs;
+}
+
 }  // namespace ssrcl::cli

@@ -1,4 +1,5 @@
 #pragma once
+#include <CLI/CLI.hpp>
 #include <string>
 #include <vector>
 
@@ -27,5 +28,16 @@ BenchInput generateScene(const std::string& scene, int width, int height, float 
 
 // "1920x1080" -> {1920, 1080}; throws Error(InvalidArgument) naming `option`.
 std::pair<int, int> parseSize(const std::string& text, const std::string& option);
+
+// The frames a benchmark runs on (`ssrcl bench`, bench/ssrcl_roofline): files, bundled samples, a
+// generated scene at sizes; none given: both samples.
+struct BenchInputOptions {
+  std::vector<std::string> files, samples, sizes{"1920x1080"};
+  std::string scene, sampleDir;
+  float sceneRoughness = 0.3f;
+};
+// inputs, --sample, --sample-dir, --scene, --size, --scene-roughness
+void addBenchInputOptions(CLI::App& cmd, BenchInputOptions& o);
+std::vector<BenchInput> loadBenchInputs(const BenchInputOptions& o);
 
 }  // namespace ssrcl::cli

@@ -6,6 +6,10 @@
 
 namespace ssrcl::cli {
 
+FrameSource frameSource(const GBufferInputOptions& input, const FrameJob& job) {
+  return input.sourceFor(job.input, job.camera == sidecarCameraPath(job.input) ? "" : job.camera);
+}
+
 NeighbourWindow::NeighbourWindow(const GBufferInputOptions& input, std::vector<FrameJob> sequence, int k, int firstView)
     : input_(viewInputOptions(input)), sequence_(std::move(sequence)), k_(k), firstView_(firstView) {
   if (k < 0) throw Error(ErrorCode::InvalidArgument, "--neighbours " + std::to_string(k) + ": must be 0 or more");
@@ -49,7 +53,7 @@ void NeighbourWindow::moveTo(Pipeline& pipeline, const std::string& input) {
     std::shared_ptr<const Frame>& frame = loaded_[j];
     if (!frame) try {
         frame = std::make_shared<const Frame>(
-            loadFrame(input_, job.input, job.camera, job.camera == sidecarCameraPath(job.input)));
+            loadFrame(frameSource(input_, job)));
       } catch (const Error& e) {
         loaded_.erase(j);
         throw Error(e.code(), "neighbour " + job.input + ": " + e.what());

@@ -16,6 +16,9 @@
 
 namespace ssrcl::cli {
 
+// How a batch reads job's frame: its camera file, its sidecar, or (no sidecar) its EXR header.
+FrameSource frameSource(const GBufferInputOptions& input, const FrameJob& job);
+
 class NeighbourWindow {
  public:
   // `sequence`: every frame the batch planned, in order (all shards, frames skipped or not).

@@ -1,35 +1,8 @@
 #include "output_form_options.hpp"
 
 #include "gbuffer_input.hpp"
-#include "renderer_presets.hpp"
-#include "ssrcl/error.hpp"
 
 namespace ssrcl::cli {
-
-void OutputFormOptions::nameMaterialPasses(GBufferSource& source) const {
-  if (resolved() != OutputForm::GlossyPass) {
-    if (!f0Channels.empty() || !baseColorChannels.empty() || !metallicChannel.empty() || !materialFile.empty())
-      throw Error(ErrorCode::InvalidArgument,
-                  "--f0-channels, --base-color-channels, --metallic-channel and --material only apply with "
-                  "--output-form glossy-pass");
-    return;
-  }
-  source.materialFile = materialFile;
-  if (!f0Channels.empty()) {
-    if (!baseColorChannels.empty() || !metallicChannel.empty())
-      throw Error(ErrorCode::InvalidArgument,
-                  "give --f0-channels or --base-color-channels/--metallic-channel, not both");
-    source.f0Channels = f0Channels;
-    return;
-  }
-  const std::string prefix = source.layer.empty() ? "" : source.layer + ".";
-  source.baseColorChannels = !baseColorChannels.empty()
-                                 ? baseColorChannels
-                                 : prefix + "base_color.R," + prefix + "base_color.G," + prefix + "base_color.B";
-  source.metallicChannel = !metallicChannel.empty() ? metallicChannel
-                           : prefix.empty()        ? std::string("metallic")
-                                                   : prefix + "metallic.X";
-}
 
 void addOutputFormOptions(CLI::App& cmd, OutputFormOptions& o) {
   const char* g = "Output";
@@ -52,20 +25,10 @@ void addOutputFormOptions(CLI::App& cmd, OutputFormOptions& o) {
 }
 
 void settleOutputForm(GBufferInputOptions& in, const std::string& file, std::ostream* tell) {
-  OutputFormOptions& o = in.form;
-  if (!o.form.empty()) return;
-  const bool named = !o.f0Channels.empty() || !o.baseColorChannels.empty() || !o.metallicChannel.empty() ||
-                     !o.materialFile.empty();
-  const bool byDefault = rendererPreset(in.renderer).glossyPassByDefault;
-  if (named || !byDefault) {  // naming the material passes asks for the form that reads them
-    o.form = named ? "glossy-pass" : "incident";
-    return;
-  }
-  GBufferInputOptions probe = in;
-  probe.form.form = outputFormName(OutputForm::GlossyPass);
-  const DefaultOutputForm chosen = defaultOutputForm(probe.sourceFor(file));
-  o.form = outputFormName(chosen.form);
-  if (!tell) return;
+  if (!in.form.form.empty()) return;
+  const OutputFormChoice chosen = chooseOutputForm(in.sourceFor(file, ""));
+  in.form.form = outputFormName(chosen.form);
+  if (!tell || chosen.why.empty()) return;
   if (chosen.form == OutputForm::GlossyPass)
     *tell << "ssrcl: output form glossy-pass (as Cycles' Glossy Direct + Indirect, Fresnel included): " << chosen.why
           << "; --output-form incident gives the radiance before the Fresnel\n";

@@ -17,10 +17,6 @@ struct OutputFormOptions {
   std::string f0Channels, baseColorChannels, metallicChannel, materialFile;
 
   OutputForm resolved() const { return form == "glossy-pass" ? OutputForm::GlossyPass : OutputForm::Incident; }
-  // Names the material passes in `source` (whose layer is resolved): the F0 channels given, or
-  // the base colour and metallic channels, by default Blender AOVs named base_color (colour) and
-  // metallic (value). Throws Error(InvalidArgument) for material options without the glossy-pass form.
-  void nameMaterialPasses(GBufferSource& source) const;
 };
 
 void addOutputFormOptions(CLI::App& cmd, OutputFormOptions& o);

@@ -2,7 +2,6 @@
 
 #include <nlohmann/json.hpp>
 
-#include "settings_json.hpp"
 #include "ssrcl/version.hpp"
 
 namespace ssrcl::cli {
@@ -58,7 +57,7 @@ ReflectionExrOptions writerOptions(const OutputOptions& o, const OutputRecord& r
   w.attributes = {{"ssrcl/version", SSRCL_VERSION},
                   {"ssrcl/preset", record.preset},
                   {"ssrcl/output_form", record.outputForm},
-                  {"ssrcl/settings", settingsJson(record.settings).dump()},
+                  {"ssrcl/settings", settingsJson(record.settings)},
                   {"ssrcl/seed", std::to_string(record.settings.seed)},
                   {"ssrcl/inputs", inputs.dump()},
                   {"ssrcl/device", record.device}};

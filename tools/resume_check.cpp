@@ -4,7 +4,6 @@
 
 #include <nlohmann/json.hpp>
 
-#include "settings_json.hpp"
 
 namespace ssrcl::cli {
 namespace {
@@ -64,7 +63,7 @@ std::string resumeMismatch(const std::string& output, const std::string& input, 
   const nlohmann::ordered_json recorded = nlohmann::ordered_json::parse(*settings, nullptr, false);
   if (recorded.is_discarded() || !recorded.is_object())
     return output + ": its ssrcl/settings record is not a JSON object; give --overwrite to recompute it";
-  const nlohmann::ordered_json now = settingsJson(asked.settings);
+  const nlohmann::ordered_json now = nlohmann::ordered_json::parse(settingsJson(asked.settings));
   for (const auto& [key, value] : now.items()) {
     const auto it = recorded.find(key);
     if (it == recorded.end())

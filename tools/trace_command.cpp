@@ -4,7 +4,6 @@
 #include <memory>
 
 #include "commands.hpp"
-#include "device_option.hpp"
 #include "exit_codes.hpp"
 #include "gbuffer_input.hpp"
 #include "output_location.hpp"
@@ -26,11 +25,10 @@ struct TraceOptions {
 };
 
 int runTrace(TraceOptions& o) {
-  const GBufferSource& passes = o.in.source;
+  const FrameSource& passes = o.in.source;
   if (o.input.empty() && (passes.colorFile.empty() || passes.depthFile.empty() || passes.normalFile.empty()))
     throw Error(ErrorCode::InvalidArgument, "trace: give a G-buffer EXR, or each of --color, --depth and --normal");
   const std::string mainFile = o.input.empty() ? passes.colorFile : o.input;
-  const std::string cameraPath = !o.camera.empty() ? o.camera : sidecarCameraPath(mainFile);
   std::error_code ec;
   if (std::filesystem::equivalent(o.output, mainFile, ec))
     throw Error(ErrorCode::InvalidArgument, o.output + ": refusing to overwrite the input G-buffer");
@@ -41,7 +39,7 @@ int runTrace(TraceOptions& o) {
 
   const EnvironmentMap environment = o.settings.loadEnvironment();  // a bad file fails before any tracing
   settleOutputForm(o.in, o.input, &std::cerr);
-  const Frame frame = loadFrame(o.in, o.input, cameraPath, o.camera.empty());
+  const Frame frame = loadFrame(o.in.sourceFor(o.input, o.camera));
   const Camera& camera = frame.camera;
   const Views views = loadViews(o.in, o.views, o.viewCameras);
   const Views neighbours = loadViews(o.in, o.neighbours, {});
@@ -62,7 +60,7 @@ int runTrace(TraceOptions& o) {
   OutputRecord record{o.settings.quality, pipeline.settings(), device.info().name, o.in.form.form,
                       o.settings.environment, o.views};
   record.views.insert(record.views.end(), o.neighbours.begin(), o.neighbours.end());
-  ReflectionExrOptions written = writerOptions(o.out, record, mainFile, o.in.sourceFor(o.input), frame);
+  ReflectionExrOptions written = writerOptions(o.out, record, mainFile, frame.passes, frame);
   if (pipeline.viewCount() > 0) written.view = &pipeline.output("view");
   try {
     writeReflectionExr(o.output, reflection, pipeline.output("distance"), written);

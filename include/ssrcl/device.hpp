@@ -50,4 +50,8 @@ class Device {
   std::shared_ptr<Impl> impl_;
 };
 
+// A device by name, as `ssrcl --device` takes it: an index from Device::list(), "cpu", "gpu", or
+// "default" (or empty). Throws Error(InvalidArgument) for another name.
+Device openDevice(const std::string& name);
+
 }  // namespace ssrcl

@@ -115,9 +115,15 @@ struct TraceSettings {
 };
 // Throws Error(InvalidArgument) naming the first parameter out of its range (commit() does too).
 void validateSettings(const TraceSettings& settings);
-// Field by field (a new field joins them in host/settings_validation.cpp).
+
+// Field by field (a new field joins them in host/pipeline/settings_validation.cpp).
 bool operator==(const TraceSettings& a, const TraceSettings& b);
 bool operator!=(const TraceSettings& a, const TraceSettings& b);
+
+// Every field of `settings` under its C++ name, in declaration order, as one line of JSON (enums
+// by their option names, floats as their shortest decimal): what `ssrcl trace` records in an
+// output's ssrcl/settings attribute (a field added to TraceSettings joins it in settings_json.cpp).
+std::string settingsJson(const TraceSettings& settings);
 
 // Named bundles of the settings above (all with the adaptive thickness and prefiltered hits):
 //   "draft"     Hi-Z, 2 rays in one pixel of each 2x2 block, 5x5 reuse, 64 iterations.

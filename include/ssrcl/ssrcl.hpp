@@ -5,6 +5,7 @@
 #include "ssrcl/environment.hpp"
 #include "ssrcl/error.hpp"
 #include "ssrcl/exr_output.hpp"
+#include "ssrcl/frame.hpp"
 #include "ssrcl/glossy_pass_form.hpp"
 #include "ssrcl/image.hpp"
 #include "ssrcl/io.hpp"

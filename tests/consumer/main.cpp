@@ -1,31 +1,39 @@
-// Uses the installed library through its public API only: a mirror wall facing the camera
-// reflects what is behind the camera, which is not on screen, so the pass is written into the
-// caller's memory as zeros; the version matches the headers, and misuse is an error.
+// The README's C++ example, built against the installed library through its public API only
+// (tests/consumer/run.sh): reads a Blender frame with loadFrame (its sidecar camera, the input
+// check), traces it into the caller's memory and writes the pass. Also checks that the version
+// matches the headers, that a frame the declared conventions do not explain is refused, and that
+// misuse is an error.   ssrcl_consumer <G-buffer EXR> <output EXR>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <glm/gtc/matrix_transform.hpp>
 #include <vector>
 
 #include "ssrcl/ssrcl.hpp"
 
-int main() {
+int main(int argc, char** argv) {
+  if (argc != 3) {
+    std::printf("usage: ssrcl_consumer <G-buffer EXR> <output EXR>\n");
+    return 2;
+  }
   if (std::strcmp(ssrcl::versionString(), SSRCL_VERSION) != 0 || ssrcl::versionNumber() != SSRCL_VERSION_NUMBER) {
     std::printf("library %s, headers %s\n", ssrcl::versionString(), SSRCL_VERSION);
     return 1;
   }
-  const int w = 32, h = 24;
-  ssrcl::Camera camera;
-  camera.width = w;
-  camera.height = h;
-  camera.projection = glm::perspective(1.0, double(w) / h, 0.1, 100.0);
-  camera.nearPlane = 0.1;
-  camera.farPlane = 100.0;
-  std::vector<float> color(size_t(w) * h * 3, 0.5f), depth(size_t(w) * h, 5.0f), normal(size_t(w) * h * 3, 0.0f);
-  for (size_t i = 0; i < depth.size(); ++i) normal[i * 3 + 2] = 1.0f;  // facing the camera
-  std::vector<float> reflection(size_t(w) * h * 4, -1.0f);
-
   try {
+    ssrcl::FrameSource source;
+    source.file = argv[1];  // Blender naming and conventions by default (source.renderer)
+    const ssrcl::Frame frame = ssrcl::loadFrame(source);
+
+    ssrcl::FrameSource wrong = source;  // Blender's normals are world space: the input check refuses this
+    wrong.normalSpace = ssrcl::NormalSpace::Camera;
+    try {
+      ssrcl::loadFrame(wrong);
+      std::printf("loadFrame did not refuse normals read in the wrong space\n");
+      return 1;
+    } catch (const ssrcl::Error& e) {
+      if (e.code() != ssrcl::ErrorCode::InvalidInput) throw;
+    }
+
     ssrcl::Device device(ssrcl::DeviceType::CPU);
     ssrcl::Pipeline pipeline(device);
     try {
@@ -35,25 +43,27 @@ int main() {
     } catch (const ssrcl::Error& e) {
       if (e.code() != ssrcl::ErrorCode::InvalidOperation) throw;
     }
-    pipeline.setImage("color", ssrcl::ImageView(color.data(), w, h, 3));
-    pipeline.setImage("depth", ssrcl::ImageView(depth.data(), w, h, 1));
-    pipeline.setImage("normal", ssrcl::ImageView(normal.data(), w, h, 3));
+    ssrcl::setFrame(pipeline, frame);
+    const int w = frame.camera.width, h = frame.camera.height;
+    std::vector<float> reflection(size_t(w) * h * 4, -1.0f);  // the caller's memory
     pipeline.setOutput("reflection", ssrcl::ImageView(reflection.data(), ssrcl::PixelFormat::Float, w, h, 4));
-    pipeline.setCamera(camera);
-    pipeline.settings().constantRoughness = 0.0f;
     int reports = 0;
     pipeline.setProgressMonitor([&](double) { return ++reports > 0; });
     pipeline.commit();
     pipeline.execute();
-    for (float v : reflection)
-      if (!std::isfinite(v) || v < 0.0f) {
-        std::printf("output not written or not finite: %g\n", v);
+    size_t hits = 0;
+    for (size_t i = 0; i < reflection.size(); ++i) {
+      if (!std::isfinite(reflection[i]) || reflection[i] < 0.0f) {
+        std::printf("output not written or not finite: %g\n", reflection[i]);
         return 1;
       }
-    if (reports == 0) {
-      std::printf("the progress monitor was not called\n");
+      hits += i % 4 == 3 && reflection[i] > 0.0f;
+    }
+    if (hits == 0 || reports == 0) {
+      std::printf("no reflection found (%zu pixels) or no progress reported (%d)\n", hits, reports);
       return 1;
     }
+    ssrcl::writeReflectionExr(argv[2], pipeline.output("reflection"), pipeline.output("distance"), frame.windows);
   } catch (const ssrcl::Error& e) {
     std::printf("ssrcl error (%s): %s\n", ssrcl::errorCodeName(e.code()), e.what());
     return 1;

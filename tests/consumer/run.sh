@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Installs a build into a temporary prefix, then builds and runs tests/consumer against it, once
-# through find_package(ssrcl) and once through pkg-config; and checks that libssrcl.so exports
+# Installs a build into a temporary prefix, then builds and runs tests/consumer (the README's C++
+# example) against it on the installed mirror sample, once through find_package(ssrcl) and once
+# through pkg-config; and checks that libssrcl.so exports
 # the API only; and that the installed CLI finds its bundled samples (share/ssrcl/samples), no
 # source path compiled in.   tests/consumer/run.sh <build dir>
 set -euo pipefail
@@ -12,13 +13,14 @@ trap 'rm -rf "$tmp"' EXIT
 cmake --install "$build" --prefix "$tmp/prefix" >/dev/null
 cmake -S "$src" -B "$tmp/build" -DCMAKE_PREFIX_PATH="$tmp/prefix" -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$tmp/build" >/dev/null
-"$tmp/build/ssrcl_consumer"
+sample=$tmp/prefix/share/ssrcl/samples/mirror/mirror.exr
+"$tmp/build/ssrcl_consumer" "$sample" "$tmp/cmake.refl.exr"
 
 libdir=$(dirname "$(find "$tmp/prefix" -name 'libssrcl.so' | head -n1)")
 export PKG_CONFIG_PATH=$libdir/pkgconfig
 # shellcheck disable=SC2046
 c++ -std=c++17 "$src/main.cpp" $(pkg-config --cflags --libs ssrcl) -o "$tmp/pkg_consumer"
-LD_LIBRARY_PATH=$libdir "$tmp/pkg_consumer"
+LD_LIBRARY_PATH=$libdir "$tmp/pkg_consumer" "$sample" "$tmp/pkg.refl.exr"
 
 soname=$(objdump -p "$libdir/libssrcl.so" | awk '/SONAME/ {print $2}')
 [[ $soname == libssrcl.so.[0-9]* ]] || { echo "unversioned SONAME: $soname"; exit 1; }

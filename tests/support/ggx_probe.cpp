@@ -1,6 +1,6 @@
 #include "support/ggx_probe.hpp"
 
-#include "opencl_c_on_host.hpp"
+#include "pipeline/opencl_c_on_host.hpp"
 
 namespace ssrcl::test {
 

@@ -1,6 +1,6 @@
 #pragma once
 // The GGX sampler exactly as the kernels implement it: kernels/ggx.cl and kernels/sequence.cl
-// compiled for the host (host/opencl_c_on_host.hpp).
+// compiled for the host (host/pipeline/opencl_c_on_host.hpp).
 #include <cstdint>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>

@@ -23,9 +23,13 @@ void ResolveStage::plan(DeviceBuffers& buffers, const FrameShape& frame) {
 
 void ResolveStage::bind(const SetupStage& setup, const TraceStage& trace, const cl::Buffer& rgba,
                         const cl::Buffer& distance, const cl::Buffer& view) {
-  bindArgs(accumulate_, 1, setup.tileList, setup.positions, setup.normals, setup.pixelRays, trace.rayHit,
+  bindArgs(accumulate_, 1,
+           "tile_list, positions, normals, pixel_rays, ray_hit, ray_radiance, acc_radiance, acc_weight, ray_state, "
+           "acc_sources",
+           setup.tileList, setup.positions, setup.normals, setup.pixelRays, trace.rayHit,
            trace.rayRadiance, radiance_, weight_, trace.rayState, sources_);
-  bindArgs(finalize_, 1, setup.tileList, radiance_, weight_, rgba, distance, sources_, view);
+  bindArgs(finalize_, 1, "tile_list, acc_radiance, acc_weight, out_rgba, out_distance, acc_sources, out_view",
+           setup.tileList, radiance_, weight_, rgba, distance, sources_, view);
 }
 
 ResolveParams ResolveStage::params(const FrameShape& frame, const CameraConstants& camera, const TraceSettings& s,

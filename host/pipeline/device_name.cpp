@@ -1,10 +1,9 @@
-#include "device_option.hpp"
-
 #include <cctype>
 
+#include "ssrcl/device.hpp"
 #include "ssrcl/error.hpp"
 
-namespace ssrcl::cli {
+namespace ssrcl {
 
 Device openDevice(const std::string& option) {
   if (option.empty() || option == "default") return Device(DeviceType::Default);
@@ -17,4 +16,4 @@ Device openDevice(const std::string& option) {
   return Device(std::stoi(option));
 }
 
-}  // namespace ssrcl::cli
+}  // namespace ssrcl

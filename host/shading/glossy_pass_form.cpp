@@ -9,7 +9,7 @@
 
 #include "ssrcl/error.hpp"
 #include "ssrcl/specular_albedo.hpp"
-#include "settings_validation.hpp"
+#include "pipeline/settings_validation.hpp"
 
 namespace ssrcl {
 

@@ -1,9 +1,10 @@
-#include "settings_json.hpp"
-
 #include <charconv>
 #include <cstdlib>
+#include <nlohmann/json.hpp>
 
-namespace ssrcl::cli {
+#include "ssrcl/pipeline.hpp"
+
+namespace ssrcl {
 namespace {
 
 // The option names of the enums (--tracer, --thickness-model, --roughness-mapping).
@@ -21,7 +22,7 @@ double decimal(float f) {
 
 }  // namespace
 
-nlohmann::ordered_json settingsJson(const TraceSettings& s) {
+std::string settingsJson(const TraceSettings& s) {
   nlohmann::ordered_json j;
   j["thicknessModel"] = name(s.thicknessModel);
   j["thicknessRelative"] = decimal(s.thicknessRelative);
@@ -48,7 +49,7 @@ nlohmann::ordered_json settingsJson(const TraceSettings& s) {
   j["classifyWork"] = s.classifyWork;
   j["environmentRotation"] = decimal(s.environmentRotation);
   j["environmentIntensity"] = decimal(s.environmentIntensity);
-  return j;
+  return j.dump();
 }
 
-}  // namespace ssrcl::cli
+}  // namespace ssrcl

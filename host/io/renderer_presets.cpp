@@ -1,9 +1,12 @@
 #include "renderer_presets.hpp"
 
 #include "ssrcl/error.hpp"
+#include "ssrcl/frame.hpp"
 
-namespace ssrcl::cli {
+namespace ssrcl {
 namespace {
+
+using detail::RendererPreset;
 
 // Empty channel fields keep the loader's defaults for the layer; "a|b" lists the layouts a
 // renderer is known to write, tried in order. Sources and what is unverified: docs/renderers.md.
@@ -36,7 +39,7 @@ std::vector<std::string> rendererNames() {
   return names;
 }
 
-const RendererPreset& rendererPreset(const std::string& name) {
+const detail::RendererPreset& detail::rendererPreset(const std::string& name) {
   std::string known;
   for (const RendererPreset& p : presets()) {
     if (p.name == name) return p;
@@ -45,4 +48,4 @@ const RendererPreset& rendererPreset(const std::string& name) {
   throw Error(ErrorCode::InvalidArgument, "--renderer: unknown renderer '" + name + "' (known: " + known + ")");
 }
 
-}  // namespace ssrcl::cli
+}  // namespace ssrcl

@@ -90,7 +90,10 @@ void ViewStage::bind(cl::CommandQueue& q, const Camera& main, const std::vector<
     u.thickness.bind(u.setup);
     u.hzb.bind(q);
     u.colors.bind(u.hzb);
-    bindArgs(u.kernel, 1, cameras_, setup.positions, setup.normals, setup.rayList, setup.pixelRays, u.hzb.hzb,
+    bindArgs(u.kernel, 1,
+             "views, main_positions, main_normals, ray_list, pixel_rays, hzb, levels, positions, normals, planes, "
+             "color_pyramid, ray_hit, ray_radiance, ray_state",
+             cameras_, setup.positions, setup.normals, setup.rayList, setup.pixelRays, u.hzb.hzb,
              u.hzb.levels, u.setup.positions, u.setup.normals, u.setup.planes, u.colors.pyramid, trace.rayHit,
              trace.rayRadiance, trace.rayState);
   }

@@ -78,7 +78,10 @@ void TraceStage::plan(DeviceBuffers& buffers, const FrameShape& frame) {
 }
 
 void TraceStage::bind(const SetupStage& setup, const HzbStage& hzb, const ColorPyramidStage& colors) {
-  bindArgs(kernel_, 1, hzb.hzb, hzb.levels, setup.positions, setup.normals, setup.rayList, setup.pixelRays,
+  bindArgs(kernel_, 1,
+           "hzb, levels, positions, normals, ray_list, pixel_rays, planes, work_counters, color_pyramid, base, "
+           "specular, f0, albedo, ray_hit, ray_radiance, ray_state",
+           hzb.hzb, hzb.levels, setup.positions, setup.normals, setup.rayList, setup.pixelRays,
            setup.planes, workCounters_, colors.pyramid, baseIn_, specularIn_, f0In_, albedoTable_, rayHit, rayRadiance,
            rayState);
 }

@@ -27,7 +27,10 @@ void SetupStage::plan(DeviceBuffers& buffers, const FrameShape& frame, int color
 void SetupStage::bind(const cl::Buffer& hzb, const cl::Buffer& colorPyramid) {
   // Argument 0 is the parameter block, set at each enqueue. HZB and colour level 0 start at
   // offset 0 of their buffers.
-  bindArgs(kernel_, 1, colorIn_, depthIn_, normalIn_, roughnessIn_, positions, hzb, normals, colorPyramid, pixelRays,
+  bindArgs(kernel_, 1,
+           "color_in, depth_in, normal_in, roughness_in, position_out, hzb_out, normal_out, color_out, pixel_rays, "
+           "ray_list, tile_list, ray_count, plane_out",
+           colorIn_, depthIn_, normalIn_, roughnessIn_, positions, hzb, normals, colorPyramid, pixelRays,
            rayList, tileList, counts, planes);
 }
 

@@ -14,7 +14,7 @@ void HzbStage::plan(DeviceBuffers& buffers, const FrameShape& frame) {
 
 void HzbStage::bind(cl::CommandQueue& q) {
   q.enqueueWriteBuffer(levels, CL_TRUE, 0, frame_.levels.size() * sizeof(HzbLevel), frame_.levels.data());
-  bindArgs(kernel_, 0, hzb, levels);
+  bindArgs(kernel_, 0, "hzb, levels", hzb, levels);
 }
 
 // Work-groups of one 64-texel row: PoCL vectorises a group's work-item loop along x, and the reduction

@@ -17,7 +17,8 @@ void FilterStage::plan(DeviceBuffers& buffers, const FrameShape& frame) {
 
 void FilterStage::bind(const SetupStage& setup, const cl::Buffer& rgba, const cl::Buffer& distance) {
   if (enabled_)
-    bindArgs(kernel_, 1, setup.tileList, setup.positions, setup.normals, setup.pixelRays, resolvedRgba,
+    bindArgs(kernel_, 1, "tile_list, positions, normals, pixel_rays, in_rgba, in_distance, out_rgba, out_distance",
+             setup.tileList, setup.positions, setup.normals, setup.pixelRays, resolvedRgba,
              resolvedDistance, rgba, distance);
 }
 

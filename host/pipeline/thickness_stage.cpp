@@ -15,7 +15,7 @@ void ThicknessStage::plan(DeviceBuffers& buffers, const FrameShape& frame) {
 }
 
 void ThicknessStage::bind(const SetupStage& setup) {
-  if (enabled_) bindArgs(kernel_, 1, setup.positions, rowRuns_, setup.planes);
+  if (enabled_) bindArgs(kernel_, 1, "positions, row, planes", setup.positions, rowRuns_, setup.planes);
 }
 
 void ThicknessStage::enqueue(cl::CommandQueue& q, const TraceSettings& s, StageEvents& events) {

@@ -16,7 +16,7 @@
 #include <new>
 #include <thread>
 
-#include "exr_header_check.hpp"
+#include "io/exr_header_check.hpp"
 #include "ssrcl/environment.hpp"
 #include "ssrcl/error.hpp"
 

@@ -193,7 +193,8 @@ const cl::Program& Device::Impl::program(const std::vector<std::string>& sources
                                          const std::vector<std::string>& defines) {
   // SSRCL_KERNEL_BUILD_OPTIONS adds OpenCL compiler options, for diagnosing a driver (e.g.
   // -cl-opt-disable); they come last, so they can override the variant's defines.
-  std::string options = "-cl-std=CL1.2";
+  // -cl-kernel-arg-info: the stages check their bindings against the kernels (checkKernelArgs).
+  std::string options = "-cl-std=CL1.2 -cl-kernel-arg-info";
   for (const std::string& d : defines) options += " -D" + d;
   if (const char* extra = std::getenv("SSRCL_KERNEL_BUILD_OPTIONS")) options += std::string(" ") + extra;
   std::string key = options;

@@ -68,9 +68,17 @@ using StageEvents = std::map<std::string, std::vector<cl::Event>>;
 cl::Event* newEvent(StageEvents& events, const std::string& stage);
 double eventMs(const cl::Event& e);
 
-// Binds a kernel's arguments from `first` on, in order.
+// Checks that the kernel's arguments from `first` on are `count` arguments named `names`
+// (comma-separated, as the kernel declares them; programs are built with -cl-kernel-arg-info), so
+// a host binding out of step with its kernel fails at commit, naming both, instead of tracing
+// with buffers in the wrong places. Throws Error(InvalidOperation). Names are not checked on a
+// driver that keeps no argument information.
+void checkKernelArgs(const cl::Kernel& kernel, cl_uint first, const char* names, size_t count);
+
+// Binds a kernel's arguments from `first` on, in order, to the parameters `names` (checkKernelArgs).
 template <class... Args>
-void bindArgs(cl::Kernel& kernel, cl_uint first, const Args&... args) {
+void bindArgs(cl::Kernel& kernel, cl_uint first, const char* names, const Args&... args) {
+  checkKernelArgs(kernel, first, names, sizeof...(args));
   cl_uint index = first;
   (kernel.setArg(index++, args), ...);
 }

@@ -1,10 +1,9 @@
 #pragma once
 #include <string>
-#include <vector>
 
 #include "ssrcl/io.hpp"
 
-namespace ssrcl::cli {
+namespace ssrcl::detail {
 
 // What a renderer writes by default: channel names, depth kind, normal space, and where its
 // camera is (docs/renderers.md: the table and its sources). Options given alone override each field.
@@ -21,6 +20,5 @@ struct RendererPreset {
 
 // Throws Error(InvalidArgument) naming the known renderers for an unknown name.
 const RendererPreset& rendererPreset(const std::string& name);
-std::vector<std::string> rendererNames();
 
-}  // namespace ssrcl::cli
+}  // namespace ssrcl::detail

@@ -46,7 +46,8 @@ void EnvironmentStage::bind(cl::CommandQueue& q, const SetupStage& setup, const 
     offset += level.data.size() * sizeof(float);
   }
   q.enqueueWriteBuffer(levels_, CL_TRUE, 0, packed_.size() * sizeof(HzbLevel), packed_.data());
-  bindArgs(kernel_, 1, setup.positions, setup.normals, texels_, levels_, rgba);
+  bindArgs(kernel_, 1, "positions, normals, texels, levels, rgba", setup.positions, setup.normals, texels_, levels_,
+           rgba);
 }
 
 void EnvironmentStage::enqueue(cl::CommandQueue& q, const glm::dmat4& view, const TraceSettings& s,

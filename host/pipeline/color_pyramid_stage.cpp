@@ -25,7 +25,7 @@ void ColorPyramidStage::plan(DeviceBuffers& buffers, const FrameShape& frame) {
 }
 
 void ColorPyramidStage::bind(const HzbStage& hzb) {
-  if (reduce_) bindArgs(reduce_kernel_, 0, pyramid, hzb.levels);
+  if (reduce_) bindArgs(reduce_kernel_, 0, "pyramid, levels", pyramid, hzb.levels);
 }
 
 void ColorPyramidStage::reduce(cl::CommandQueue& q, StageEvents& events) {
@@ -35,9 +35,11 @@ void ColorPyramidStage::reduce(cl::CommandQueue& q, StageEvents& events) {
 void ColorPyramidStage::bind(const HzbStage& hzb, const SetupStage& setup, const TraceStage& trace) {
   bind(hzb);
   if (!reduce_) return;
-  bindArgs(count_, 1, setup.rayList, setup.pixelRays, trace.rayRadiance, counts_);
-  bindArgs(weights_, 1, pyramid, counts_);
-  bindArgs(lookup_, 1, setup.rayList, setup.pixelRays, pyramid, hzb.levels, trace.rayRadiance);
+  bindArgs(count_, 1, "ray_list, pixel_rays, ray_radiance, counts", setup.rayList, setup.pixelRays, trace.rayRadiance,
+           counts_);
+  bindArgs(weights_, 1, "pyramid, counts", pyramid, counts_);
+  bindArgs(lookup_, 1, "ray_list, pixel_rays, pyramid, levels, ray_radiance", setup.rayList, setup.pixelRays, pyramid,
+           hzb.levels, trace.rayRadiance);
 }
 
 void ColorPyramidStage::enqueue(cl::CommandQueue& q, StageEvents& events) {

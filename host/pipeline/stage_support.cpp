@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <glm/gtc/matrix_inverse.hpp>
 #include <limits>
+#include <sstream>
+
+#include "ssrcl/error.hpp"
 
 namespace ssrcl::detail {
 
@@ -83,6 +86,32 @@ int resolvedRays(const TraceSettings& s) {
   const int neighbours = (2 * s.reuseRadius + 1) * (2 * s.reuseRadius + 1) - 1;
   const int stride = resolveRayStride(s);
   return s.samplesPerPixel + neighbours * ((s.samplesPerPixel + stride - 1) / stride);
+}
+
+void checkKernelArgs(const cl::Kernel& kernel, cl_uint first, const char* names, size_t count) {
+  std::vector<std::string> expected;
+  std::istringstream list(names);
+  for (std::string name; std::getline(list, name, ',');) expected.push_back(name.substr(name.find_first_not_of(' ')));
+  const std::string kernelName = kernel.getInfo<CL_KERNEL_FUNCTION_NAME>().c_str();
+  if (expected.size() != count)
+    throw Error(ErrorCode::InvalidOperation, "kernel " + kernelName + ": the host binds " + std::to_string(count) +
+                                                 " arguments but names " + std::to_string(expected.size()));
+  const cl_uint declared = kernel.getInfo<CL_KERNEL_NUM_ARGS>();
+  if (first + count > declared)
+    throw Error(ErrorCode::InvalidOperation, "kernel " + kernelName + " takes " + std::to_string(declared) +
+                                                 " arguments, the host binds " + std::to_string(first + count));
+  for (size_t k = 0; k < count; ++k) {
+    std::string name;
+    try {
+      name = kernel.getArgInfo<CL_KERNEL_ARG_NAME>(cl_uint(first + k)).c_str();  // without the string's NUL
+    } catch (const cl::Error& e) {
+      if (e.err() == CL_KERNEL_ARG_INFO_NOT_AVAILABLE) return;
+      throw;
+    }
+    if (name != expected[k])
+      throw Error(ErrorCode::InvalidOperation, "kernel " + kernelName + ": argument " + std::to_string(first + k) +
+                                                   " is '" + name + "' but the host binds '" + expected[k] + "' there");
+  }
 }
 
 }  // namespace ssrcl::detail

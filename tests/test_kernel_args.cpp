@@ -1,0 +1,67 @@
+// The stages' argument bindings against the kernels: each bindArgs names the parameters it binds
+// (host/pipeline/stage_support.hpp), checked against the kernel's own (built with
+// -cl-kernel-arg-info). A binding out of step with its kernel must fail at commit, naming both,
+// and every stage of a full pipeline (views, environment, denoise, prefilter) must agree.
+#include <gtest/gtest.h>
+
+#include "pipeline/device_impl.hpp"
+#include "pipeline/stage_support.hpp"
+#include "scenes/analytic_scene.hpp"
+#include "ssrcl/ssrcl.hpp"
+#include "support/test_device.hpp"
+
+namespace {
+
+using ssrcl::detail::checkKernelArgs;
+using ssrcl::test::sharedTestDevice;
+
+cl::Kernel hzbKernel() {
+  ssrcl::Device::Impl& d = ssrcl::detail::DeviceAccess::impl(sharedTestDevice());
+  return cl::Kernel(d.program({"ssrcl_shared.h", "common.cl", "hzb.cl"}), "hzb_reduce");
+}
+
+std::string refusal(const cl::Kernel& kernel, cl_uint first, const char* names, size_t count) {
+  try {
+    checkKernelArgs(kernel, first, names, count);
+  } catch (const ssrcl::Error& e) {
+    EXPECT_EQ(e.code(), ssrcl::ErrorCode::InvalidOperation);
+    return e.what();
+  }
+  return "";
+}
+
+TEST(KernelArgs, TheKernelsOwnNamesPass) {
+  const cl::Kernel k = hzbKernel();  // hzb_reduce(hzb, levels, dst_level)
+  EXPECT_EQ(refusal(k, 0, "hzb, levels, dst_level", 3), "");
+  EXPECT_EQ(refusal(k, 1, "levels", 1), "");
+}
+
+TEST(KernelArgs, SwappedMissingOrExtraArgumentsAreRefusedByName) {
+  const cl::Kernel k = hzbKernel();
+  EXPECT_EQ(refusal(k, 0, "levels, hzb", 2), "kernel hzb_reduce: argument 0 is 'hzb' but the host binds 'levels' there");
+  EXPECT_EQ(refusal(k, 0, "hzb, levels, dst_level, extra", 4),
+            "kernel hzb_reduce takes 3 arguments, the host binds 4");
+  EXPECT_EQ(refusal(k, 0, "hzb, levels", 3), "kernel hzb_reduce: the host binds 3 arguments but names 2");
+}
+
+// Every stage binds through the check: a pipeline using them all commits and traces.
+TEST(KernelArgs, EveryStageOfAFullPipelineAgreesWithItsKernels) {
+  const ssrcl::test::Scene scene = ssrcl::test::makeScene("spheres_on_mirror");
+  const ssrcl::Camera camera = ssrcl::test::makeCamera(scene.view, 64, 36);
+  const ssrcl::test::AnalyticGBuffer gbuffer = ssrcl::test::renderGBuffer(scene, camera);
+  ssrcl::Image sky(16, 8, 3);
+  sky.data.assign(sky.data.size(), 0.5f);
+  const ssrcl::EnvironmentMap env = ssrcl::prefilterEnvironment(sky);
+  ssrcl::Pipeline p(sharedTestDevice());
+  p.setGBuffer(gbuffer);
+  p.setCamera(camera);
+  p.setView(0, gbuffer, camera, "itself");
+  p.setEnvironment(env);
+  p.settings() = ssrcl::qualityPreset("high");  // denoise, prefilter, adaptive thickness
+  EXPECT_NO_THROW({
+    p.commit();
+    p.execute();
+  });
+}
+
+}  // namespace
