@@ -80,7 +80,7 @@ struct NativeMirrorTrace::Impl {
   int maxIterations;
   const GBuffer& g;
   std::vector<HzbLevel> levels;
-  std::vector<float> hzb, thickness, distance, packetDistance, packetHits, linearHits;
+  std::vector<float> hzb, thickness, distance, packetHits, linearHits;
   MinMaxPyramid pyramid;
   std::vector<uint32_t> pyramidWords;
   PacketStats packetStats;
@@ -106,7 +106,6 @@ struct NativeMirrorTrace::Impl {
     hzb.resize(offset);
     thickness.resize(n);
     distance.resize(n);
-    packetDistance.resize(n);
     packetHits.resize(3 * n);
     linearHits.resize(3 * n);
     positions.resize(n);
@@ -464,22 +463,7 @@ NativeStageMs NativeMirrorTrace::run(int threads) {
 }
 
 double NativeMirrorTrace::runPackets(int threads) {
-  Impl& m = *impl_;
-  const double ms = m.tracePackets(threads, 0, m.packetHits.data());
-  // The view-space point at the hit's screen point and depth, as the scalar trace measures it.
-  parallelRows(m.h, threads, [&m](int y) {
-    for (int x = 0; x < m.w; ++x) {
-      const size_t i = size_t(y) * m.w + x;
-      const float* hit = &m.packetHits[3 * i];
-      m.packetDistance[i] = 0.0f;
-      if (hit[0] < 0.0f) continue;
-      vec3 v;
-      const vec3 origin = m.pixelLine(vec2(hit[0], hit[1]), v);
-      const vec3 q = origin + (1.0f / hit[2] + origin.z) * (v / -v.z);
-      m.packetDistance[i] = glm::length(q - vec3(m.positions[i]));
-    }
-  });
-  return ms;
+  return impl_->tracePackets(threads, 0, impl_->packetHits.data());
 }
 
 double NativeMirrorTrace::runGlossyPackets(int threads, int samplesPerPixel) {
@@ -505,7 +489,6 @@ bool packetTraceSupported() {
 }
 
 const std::vector<float>& NativeMirrorTrace::distance() const { return impl_->distance; }
-const std::vector<float>& NativeMirrorTrace::packetDistance() const { return impl_->packetDistance; }
 const std::vector<float>& NativeMirrorTrace::packetHitPoints() const { return impl_->packetHits; }
 const std::vector<float>& NativeMirrorTrace::linearHitPoints() const { return impl_->linearHits; }
 long long NativeMirrorTrace::rays() const { return impl_->rays; }

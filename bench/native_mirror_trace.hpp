@@ -2,9 +2,10 @@
 // The mirror pass in native C++ (std::thread, and whatever SIMD the compiler gives the loops):
 // per-pixel setup as kernels/setup.cl does it (view point, view normal, constant thickness, HZB
 // level 0 bounding each pixel's plane), the min-depth pyramid as kernels/hzb.cl, and the Hi-Z
-// traversal with the hit test of kernels/trace.cl, in float as the kernels compute. It is the
-// roofline `ssrcl bench --roofline` sets the OpenCL stages against, and a second implementation
-// whose hits the OpenCL ones must match.
+// traversal with the hit test of kernels/trace.cl, in float as the kernels compute: a second
+// implementation whose hits the OpenCL ones must match. From the same setup, the min-max packet
+// trace (bench/packet_hiz_trace, depth alone, AVX-512) is the roofline: what these cores can
+// trace (`ssrcl bench --roofline`, ssrcl_trace_roofline, bench/ROOFLINE.md).
 #include <vector>
 
 #include "packet_hiz_trace.hpp"
@@ -66,9 +67,8 @@ class NativeMirrorTrace {
   // hits where the ray's depth lies within [depth, depth (1 + thicknessRelative)] of a pixel
   // other than its own): the reference of the packet trace's hits.
   void runLinearMarch(int threads);
-  // Per pixel, after run() / runPackets(): the mirror hit's view-space distance, 0 where none (as "distance").
+  // Per pixel, after run(): the mirror hit's view-space distance, 0 where none (as "distance").
   const std::vector<float>& distance() const;
-  const std::vector<float>& packetDistance() const;
   // Per pixel 3 floats, after runPackets() / runLinearMarch(): the hit's screen x, y and 1/z; -1 where none.
   const std::vector<float>& packetHitPoints() const;
   const std::vector<float>& linearHitPoints() const;

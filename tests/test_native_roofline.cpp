@@ -54,6 +54,21 @@ TEST_P(NativeRoofline, PacketHitsAgreeWithLinearMarch) {
   }
 }
 
+// GGX samples of a surface of roughness 0 are its mirror ray (alpha clamped to 1e-4: within a
+// hundredth of a degree): 4 a pixel, hitting as the mirror rays do.
+TEST_P(NativeRoofline, GlossyRaysOfAMirrorHitAsItsMirrorRay) {
+  if (!ssrcl::bench::packetTraceSupported()) GTEST_SKIP() << "this CPU has no AVX-512";
+  ssrcl::bench::NativeMirrorTrace native(g, camera, settings);
+  native.run(2);
+  native.runPackets(2);
+  const ssrcl::bench::PacketStats mirror = native.packetStats();
+  native.runGlossyPackets(2, 4);
+  const ssrcl::bench::PacketStats glossy = native.packetStats();
+  ASSERT_GT(mirror.hits, 1000);
+  EXPECT_EQ(glossy.rays, 4 * mirror.rays);
+  EXPECT_NEAR(double(glossy.hits), 4.0 * double(mirror.hits), 0.01 * 4.0 * double(mirror.hits));
+}
+
 INSTANTIATE_TEST_SUITE_P(Scenes, NativeRoofline, testing::Values("spheres_on_mirror", "mirror_wall", "half_sky"));
 
 }  // namespace
