@@ -2,10 +2,13 @@
 // The mirror pass in native C++ (std::thread, and whatever SIMD the compiler gives the loops):
 // per-pixel setup as kernels/setup.cl does it (view point, view normal, constant thickness, HZB
 // level 0 bounding each pixel's plane), the min-depth pyramid as kernels/hzb.cl, and the Hi-Z
-// traversal with the hit test of kernels/trace.cl, in float as the kernels compute. It is the
-// roofline `ssrcl bench --roofline` sets the OpenCL stages against, and a second implementation
-// whose hits the OpenCL ones must match.
+// traversal with the hit test of kernels/trace.cl, in float as the kernels compute: a second
+// implementation whose hits the OpenCL ones must match. From the same setup, the min-max packet
+// trace (bench/packet_hiz_trace, depth alone, AVX-512) is the roofline: what these cores can
+// trace (`ssrcl bench --roofline`, ssrcl_trace_roofline, bench/ROOFLINE.md).
 #include <vector>
+
+#include "packet_hiz_trace.hpp"
 
 #include "ssrcl/camera.hpp"
 #include "ssrcl/io.hpp"
@@ -27,6 +30,16 @@ struct HitAgreement {
   long long hitPixels = 0, disagreeing = 0;
 };
 HitAgreement compareHitDistances(const std::vector<float>& a, const std::vector<float>& b);
+// The same for hit points (3 floats a pixel: screen x, y, anything; x < 0: no hit): they differ
+// where only one hits or the points lie more than `pixels` apart on either axis.
+HitAgreement compareHitPoints(const std::vector<float>& a, const std::vector<float>& b, float pixels);
+
+// What the packet trace (bench/packet_hiz_trace) did in its last run.
+struct PacketStats {
+  long long rays = 0, hits = 0, laneSteps = 0, packetSteps = 0;
+  double pyramidMs = 0;  // the min-max pyramid, before the trace (not in runPackets' time)
+  double cpuMs = 0;      // CPU time of the threads' ray generation and trace, all threads together
+};
 
 class NativeMirrorTrace {
  public:
@@ -39,12 +52,26 @@ class NativeMirrorTrace {
 
   // One timed run of the three stages on `threads` threads.
   NativeStageMs run(int threads);
-  // After run(): the trace again, 16 rays per instruction (bench/packet_hiz_trace), on `threads`
-  // threads; its milliseconds. Only where packetTraceSupported().
+  // After run(): the mirror rays again by the min-max packet trace (bench/packet_hiz_trace: its
+  // own ray generation, hit test on depth alone, thickness settings.thicknessRelative of the
+  // depth), on `threads` threads; the milliseconds of ray generation and trace (the pyramid is
+  // built first, timed in packetStats()). Only where packetTraceSupported().
   double runPackets(int threads);
-  // Per pixel, after run() / runPackets(): the mirror hit's view-space distance, 0 where none (as "distance").
+  // The same for `samplesPerPixel` GGX VNDF rays of every reflecting pixel (alpha = roughness^2,
+  // the roughness setup read); no per-pixel output, the counts in packetStats().
+  double runGlossyPackets(int threads, int samplesPerPixel);
+  // The texels the packet trace reads (bench/ROOFLINE.md's experiments; Half by default).
+  void setPacketTexels(TexelFormat format);
+  const PacketStats& packetStats() const;
+  // After run(): every mirror ray marched in half-pixel steps over the depth buffer (a sample
+  // hits where the ray's depth lies within [depth, depth (1 + thicknessRelative)] of a pixel
+  // other than its own): the reference of the packet trace's hits.
+  void runLinearMarch(int threads);
+  // Per pixel, after run(): the mirror hit's view-space distance, 0 where none (as "distance").
   const std::vector<float>& distance() const;
-  const std::vector<float>& packetDistance() const;
+  // Per pixel 3 floats, after runPackets() / runLinearMarch(): the hit's screen x, y and 1/z; -1 where none.
+  const std::vector<float>& packetHitPoints() const;
+  const std::vector<float>& linearHitPoints() const;
   long long rays() const;
 
  private:

@@ -1,47 +1,78 @@
 #pragma once
-// The Hi-Z traversal of bench/native_mirror_trace (kernels/trace.cl trace_hiz + hit_pixel) for 16
-// rays at once in AVX-512 lanes: the SIMD half of the native roofline. Plain pointers and no inline
-// code here: packet_hiz_trace.cpp is compiled for x86-64-v4 alone, and nothing it defines may be
-// merged into code the other files run on CPUs without AVX-512.
+// The fast half of the native roofline: a min-max Hi-Z tracer for 16 rays at once in AVX-512
+// lanes (bench/ROOFLINE.md). Unlike the scalar trace of native_mirror_trace (the OpenCL kernels'
+// arithmetic, their plane hit test), it reads only depth: a texel holds the range of inverse
+// depth (1/z, linear along the screen segment) its pixels cover, a pixel from 1/z to
+// 1/(z (1 + thickness)); a ray skips any cell whose range its own 1/z over the cell misses, and
+// hits the first pixel whose range it meets: what a linear march of the depth buffer finds.
+// Plain pointers and no inline code here: packet_hiz_trace.cpp is compiled for x86-64-v4 alone,
+// and nothing it defines may be merged into code the other files run on CPUs without AVX-512.
 #include <cstddef>
+#include <cstdint>
 
 namespace ssrcl::bench {
 
+// A level of the scalar trace's min-depth pyramid (native_mirror_trace).
 struct HzbLevel {
   int offset, width, height;
 };
 
-// What the traversal reads (setup's per-pixel outputs and the min-depth pyramid).
-struct HizScene {
+// Level l of the min-max pyramid: cells of 2^l pixels, texel (x, y) for x in [-1, width] and
+// y in [-1, height] at base + (y << shift) + x; the border around each level is zero texels
+// (a range no ray meets), so stepping out of the screen needs no bounds check.
+struct PyramidLevel {
+  int base, shift, width, height;
+};
+constexpr int kMaxPacketLevels = 16;  // sides up to 2^15 pixels
+
+// What a texel is: Half, 4 bytes (level 0: 1/z as a float, exact as the linear march reads it;
+// coarser levels: min and max of 1/z as two halfs rounded outwards); Float, 8 bytes (min and max
+// as floats at every level); or NoMemory (the trace makes up texels from its cell coordinates,
+// no load: the experiment of what a step costs without memory; hits meaningless).
+enum class TexelFormat { Half, Float, NoMemory };
+
+struct MinMaxPyramid {
+  int width = 0, height = 0, levelCount = 0;
+  PyramidLevel levels[kMaxPacketLevels] = {};
+  size_t words = 0;                 // 32-bit words the caller allocates, zeroed (Float: 2 a texel)
+  uint32_t* texels = nullptr;
+  TexelFormat format = TexelFormat::Half;
+  float farRatio = 1.0f;            // 1 / (1 + thicknessRelative): a pixel's range is [1/z farRatio, 1/z]
+};
+// Fills levels and words for a width x height frame; false where the frame is too large.
+bool layoutMinMaxPyramid(int width, int height, TexelFormat format, MinMaxPyramid& pyramid);
+// Rows [y0, y1) of level 0 from setup's positions (4 floats a pixel, w = depth, >= FLT_MAX: no
+// surface), with the pyramid's farRatio.
+void buildMinMaxLevel0(const float* positions, int y0, int y1, MinMaxPyramid& pyramid);
+// Rows [y0, y1) of level `level` (>= 1) from level - 1.
+void buildMinMaxLevel(int level, int y0, int y1, MinMaxPyramid& pyramid);
+
+// Setup's per-pixel outputs the rays start from, and the camera (perspective only).
+struct PacketFrame {
   int width, height;
-  const float* hzb;
-  const HzbLevel* levels;
-  int levelCount;            // at most kMaxPacketLevels
-  const float* planes;       // per pixel kPlaneFloats, from packPlanes
-  int maxIterations;
-};
-constexpr int kMaxPacketLevels = 32;  // sides up to 2^31 pixels
-constexpr int kPlaneFloats = 8;
-
-// What the hit test reads of a pixel in one 32-byte record, so that a lane's step at full
-// resolution touches one cache line instead of three (planes 64-byte aligned): normal x, y, z, dot(point, normal), depth
-// (>= FLT_MAX: no surface), thickness. Pixels [first, first + count) of setup's arrays (positions
-// and normals 4 floats per pixel).
-void packPlanes(const float* positions, const float* normals, const float* thickness, size_t first, size_t count,
-                float* planes);
-
-// Screen rays (trace.cl ScreenRay + the view-space direction), one array per field.
-enum RayField { kS0x, kS0y, kDsx, kDsy, kQ0x, kQ0y, kQ0z, kQ0w, kDqx, kDqy, kDqz, kDqw, kDirx, kDiry, kDirz, kRayFields };
-struct RayArrays {
-  const float* field[kRayFields];
-  size_t count;
+  const float* positions;         // 4 a pixel: view-space point, depth
+  const float* normals;           // 4 a pixel: view-space normal, roughness
+  const unsigned char* reflects;  // 1 where the pixel gets rays
+  float projection[16];           // column-major
+  float nearPlane, farPlane;
+  int maxIterations;              // steps before a ray counts as a miss
 };
 
-// Whether this CPU runs tracePackets (AVX-512 F/DQ/BW/VL, and the build compiled it).
+struct PacketCounters {
+  long long rays = 0, hits = 0;
+  long long laneSteps = 0;    // steps of live rays (each reads one texel)
+  long long packetSteps = 0;  // loop iterations of 16 lanes
+};
+
+// Rows [y0, y1) of the frame: each reflecting pixel's rays (samples == 0: its mirror ray;
+// otherwise `samples` GGX VNDF rays with alpha = roughness^2, hashed from pixel, sample and
+// seed), generated 16 pixels at a time, traced in a 16-lane packet whose lanes take new rays
+// once 4 are free. hitPoints (mirror rays only; may be null): per pixel 3 floats, the screen
+// point (x, y) where the ray enters the hit pixel's range and its 1/z there; -1 where no hit.
+void tracePacketRows(const PacketFrame& frame, const MinMaxPyramid& pyramid, int samples, uint32_t seed, int y0,
+                     int y1, float* hitPoints, PacketCounters& counters);
+
+// Whether this CPU runs the functions above (AVX-512 F/DQ/BW/VL, and the build compiled them).
 bool packetTraceSupported();
-
-// Each ray's hit t, or -1 on a miss, as trace_hiz returns it. Lanes that finish take the next
-// ray at once, so the 16 lanes stay busy while rays take 8 to 512 steps.
-void tracePackets(const HizScene& scene, const RayArrays& rays, float* tHit);
 
 }  // namespace ssrcl::bench

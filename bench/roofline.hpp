@@ -21,8 +21,8 @@ struct RooflineResult {
   std::vector<StageStats> opencl, native;    // per stage, milliseconds
   StageStats depthCopy;                      // clEnqueueCopyBuffer of the depth buffer, same run
   bench::HitAgreement hits;
-  // The trace again with 16 rays per AVX-512 instruction (bench/packet_hiz_trace), where the CPU
-  // has it; its hits against the scalar native ones.
+  // The trace again by the min-max packet trace (bench/packet_hiz_trace, 16 rays per AVX-512
+  // instruction), where the CPU has it; its hits against a half-pixel march of the depth buffer.
   bool packets = false;
   StageStats packetTrace;
   bench::HitAgreement packetHits;
