@@ -94,7 +94,7 @@ struct NativeMirrorTrace::Impl {
         farPlane(float(camera.farPlane)), thicknessRel(s.thicknessRelative), maxRoughness(s.maxRoughness),
         constantRoughness(s.constantRoughness.value_or(-1.0f)), maxIterations(s.maxIterations > 0 ? s.maxIterations : 512),
         g(gbuffer) {
-    // The pyramid as host/stage_support.cpp lays it out: each level ceil(half) of the last, to 1x1.
+    // The pyramid as host/pipeline/stage_support.cpp lays it out: each level ceil(half) of the last, to 1x1.
     int offset = 0;
     for (int lw = w, lh = h;; lw = (lw + 1) / 2, lh = (lh + 1) / 2) {
       levels.push_back({offset, lw, lh});
