@@ -8,7 +8,7 @@ namespace ssrcl::bench {
 
 // Device time of clEnqueueCopyBuffer between two device buffers of `bytes` each, on the OpenCL
 // device `info` names (platform and device name): the memory floor of one pass over a buffer of
-// that size, against which `ssrcl bench --roofline` sets the HZB (which reads the depth buffer once
+// that size, against which bench/ssrcl_roofline sets the HZB (which reads the depth buffer once
 // and writes a third of it).
 class DeviceCopyTime {
  public:

@@ -5,7 +5,7 @@
 // traversal with the hit test of kernels/trace.cl, in float as the kernels compute: a second
 // implementation whose hits the OpenCL ones must match. From the same setup, the min-max packet
 // trace (bench/packet_hiz_trace, depth alone, AVX-512) is the roofline: what these cores can
-// trace (`ssrcl bench --roofline`, ssrcl_trace_roofline, bench/ROOFLINE.md).
+// trace (bench/ssrcl_roofline, bench/ssrcl_trace_roofline, docs/BENCHMARKS.md, native roofline).
 #include <vector>
 
 #include "packet_hiz_trace.hpp"
@@ -60,7 +60,7 @@ class NativeMirrorTrace {
   // The same for `samplesPerPixel` GGX VNDF rays of every reflecting pixel (alpha = roughness^2,
   // the roughness setup read); no per-pixel output, the counts in packetStats().
   double runGlossyPackets(int threads, int samplesPerPixel);
-  // The texels the packet trace reads (bench/ROOFLINE.md's experiments; Half by default).
+  // The texels the packet trace reads (docs/BENCHMARKS.md, native roofline's experiments; Half by default).
   void setPacketTexels(TexelFormat format);
   const PacketStats& packetStats() const;
   // After run(): every mirror ray marched in half-pixel steps over the depth buffer (a sample

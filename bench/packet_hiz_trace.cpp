@@ -14,7 +14,7 @@ namespace {
 
 constexpr int kLanes = 16;
 // Lanes are refilled once this many are free: refilling costs about a step's instructions, and
-// waiting for more leaves lanes idle (bench/ROOFLINE.md).
+// waiting for more leaves lanes idle (docs/BENCHMARKS.md, native roofline).
 constexpr int kRefillAt = 4;
 // Packets per thread: a step waits on its gather and on the chain of decisions that make its
 // index, so the other packets' steps fill the wait (2: 1.2-1.5x over 1; 3: a little more).
@@ -350,7 +350,7 @@ void traceBuffer(const MinMaxPyramid& pyr, int maxIterations, const RayBuffer& r
     __m512i nextX = _mm512_mask_add_epi32(k.cx, stepX, k.cx, sx), nextY = _mm512_mask_add_epi32(k.cy, ~stepX, k.cy, sy);
     // Up as many levels as the next cell has ancestors the current one does not share (the
     // highest bit in which their coordinates differ), at most kClimb: the parent of a sibling is
-    // the cell just descended from, whose range the ray met (bench/ROOFLINE.md: one level into
+    // the cell just descended from, whose range the ray met (docs/BENCHMARKS.md, native roofline: one level into
     // another parent 11% fewer steps than always one up, two 6.6% fewer again, no cap more).
     const __m512i differ = _mm512_or_si512(_mm512_xor_si512(nextX, k.cx), _mm512_xor_si512(nextY, k.cy));
     const __m512i up = _mm512_min_epi32(

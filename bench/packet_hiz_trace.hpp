@@ -1,6 +1,6 @@
 #pragma once
 // The fast half of the native roofline: a min-max Hi-Z tracer for 16 rays at once in AVX-512
-// lanes (bench/ROOFLINE.md). Unlike the scalar trace of native_mirror_trace (the OpenCL kernels'
+// lanes (docs/BENCHMARKS.md, native roofline). Unlike the scalar trace of native_mirror_trace (the OpenCL kernels'
 // arithmetic, their plane hit test), it reads only depth: a texel holds the range of inverse
 // depth (1/z, linear along the screen segment) its pixels cover, a pixel from 1/z to
 // 1/(z (1 + thickness)); a ray skips any cell whose range its own 1/z over the cell misses, and

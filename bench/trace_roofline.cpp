@@ -1,5 +1,5 @@
 // The trace's native roofline against ssrcl's OpenCL trace stage, alternated round by round in
-// one process (bench/ROOFLINE.md): the mirror rays of every reflecting pixel, then a glossy frame
+// one process (docs/BENCHMARKS.md, native roofline): the mirror rays of every reflecting pixel, then a glossy frame
 // (samples GGX VNDF rays a pixel), both by the min-max packet trace of bench/packet_hiz_trace,
 // with its steps per ray, lane use and cost per step, and the experiments on what bounds it.
 //   ssrcl_trace_roofline [width height rounds scene roughness samples [native|quick]]

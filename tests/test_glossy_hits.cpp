@@ -113,14 +113,16 @@ TEST(GlossyHits, DielectricPropsReflectedInALacqueredFloorMatchCycles) {
   RecordProperty("psnr_floor_after", std::to_string(allAfter.psnr));
   RecordProperty("psnr_reflected_props_before", std::to_string(propsBefore.psnr));
   RecordProperty("psnr_reflected_props_after", std::to_string(propsAfter.psnr));
-  // Measured (PoCL, medium): floor 26.12 -> 26.65 dB, reflected props 25.36 -> 27.50 dB, their bias
-  // +1.2% -> -0.04% of the peak, the largest pixel error 1.02 -> 0.66 of the peak. Two Cycles
-  // seeds agree to 48.3 dB on the floor and 47.0 where it shows the props.
+  // Measured (PoCL, medium, with the resolve's reuse cap): floor 26.53 -> 26.95 dB, reflected props
+  // 25.95 -> 27.64 dB, their bias +1.1% -> -0.07% of the peak, p99 0.222 -> 0.187 (the cap already
+  // trims the largest error: 0.54 both). Two Cycles seeds agree to 48.3 dB on the floor and 47.0
+  // where it shows the props.
   EXPECT_GT(propsAfter.psnr, propsBefore.psnr + 1.5);
   EXPECT_GT(allAfter.psnr, allBefore.psnr + 0.3);
   EXPECT_LT(std::abs(propsAfter.bias), 0.3 * std::abs(propsBefore.bias));
   EXPECT_GT(propsBefore.bias / ref.peak, 0.008);  // the bright reflections of the props
-  EXPECT_LT(maxAfter, 0.8 * maxBefore);
+  EXPECT_LT(propsAfter.p99, 0.9 * propsBefore.p99);
+  EXPECT_LE(maxAfter, maxBefore);
   for (const ssrcl::Image* pass : {&before, &after})
     for (float v : pass->data) ASSERT_TRUE(std::isfinite(v));
 }

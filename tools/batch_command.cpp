@@ -49,7 +49,10 @@ void settleBatchOutputForm(BatchOptions& o, const std::vector<FrameJob>& all) {
   const auto first = std::find_if(all.begin(), all.end(), [&](const FrameJob& job) {
     return std::filesystem::exists(job.input, ec);
   });
-  if (first != all.end()) settleOutputForm(o.in, first->input, o.quiet ? nullptr : &std::cerr);
+  if (first != all.end()) {
+    const std::string formNote = settleOutputForm(o.in, first->input);
+    if (!o.quiet) std::cerr << formNote;
+  }
   else if (o.in.form.form.empty()) o.in.form.form = outputFormName(OutputForm::Incident);  // each frame fails to read
 }
 

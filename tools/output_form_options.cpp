@@ -24,20 +24,19 @@ void addOutputFormOptions(CLI::App& cmd, OutputFormOptions& o) {
   cmd.add_option("--material", o.materialFile, "glossy-pass: read those passes from this EXR instead")->group(g);
 }
 
-void settleOutputForm(GBufferInputOptions& in, const std::string& file, std::ostream* tell) {
-  if (!in.form.form.empty()) return;
+std::string settleOutputForm(GBufferInputOptions& in, const std::string& file) {
+  if (!in.form.form.empty()) return "";
   const OutputFormChoice chosen = chooseOutputForm(in.sourceFor(file, ""));
   in.form.form = outputFormName(chosen.form);
-  if (!tell || chosen.why.empty()) return;
+  if (chosen.why.empty()) return "";
   if (chosen.form == OutputForm::GlossyPass)
-    *tell << "ssrcl: output form glossy-pass (as Cycles' Glossy Direct + Indirect, Fresnel included): " << chosen.why
-          << "; --output-form incident gives the radiance before the Fresnel\n";
-  else
-    *tell << "ssrcl: output form incident: the radiance reaching the surface over its specular lobe, before the "
-             "Fresnel that Cycles' Glossy Direct + Indirect keep (several times brighter than them on dielectrics); "
-          << chosen.why
-          << ": add a base_color (Color) and a metallic (Value) AOV fed from each Principled BSDF (the ssrcl Blender "
-             "add-on's Set Up does) for the glossy-pass form\n";
+    return "ssrcl: output form glossy-pass (as Cycles' Glossy Direct + Indirect, Fresnel included): " + chosen.why +
+           "; --output-form incident gives the radiance before the Fresnel\n";
+  return "ssrcl: output form incident: the radiance reaching the surface over its specular lobe, before the Fresnel "
+         "that Cycles' Glossy Direct + Indirect keep (several times brighter than them on dielectrics); " +
+         chosen.why +
+         ": add a base_color (Color) and a metallic (Value) AOV fed from each Principled BSDF (the ssrcl Blender "
+         "add-on's Set Up does) for the glossy-pass form\n";
 }
 
 void toOutputForm(const OutputFormOptions& o, Image& reflection, const GBuffer& gbuffer, const Camera& camera,

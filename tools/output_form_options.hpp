@@ -23,9 +23,10 @@ void addOutputFormOptions(CLI::App& cmd, OutputFormOptions& o);
 
 // Settles an --output-form not given, for frames like `file`: glossy-pass where material options
 // are given, or where the --renderer preset takes it by default (Blender) and `file` holds the
-// material passes (defaultOutputForm); incident otherwise. For that preset, says which and why in
-// one line on `tell` unless it is null. Throws Error(IoError) for an unreadable `file`.
-void settleOutputForm(GBufferInputOptions& in, const std::string& file, std::ostream* tell);
+// material passes (defaultOutputForm); incident otherwise. For that preset, returns one line
+// saying which and why (empty otherwise), for the caller to print once the frame has loaded, so
+// that a refused input still gets a one-line error. Throws Error(IoError) for an unreadable `file`.
+std::string settleOutputForm(GBufferInputOptions& in, const std::string& file);
 
 // The pass in the form asked for: unchanged for incident, else times E (applyGlossyPassForm).
 void toOutputForm(const OutputFormOptions& o, Image& reflection, const GBuffer& gbuffer, const Camera& camera,

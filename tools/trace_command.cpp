@@ -38,8 +38,9 @@ int runTrace(TraceOptions& o) {
   }
 
   const EnvironmentMap environment = o.settings.loadEnvironment();  // a bad file fails before any tracing
-  settleOutputForm(o.in, o.input, &std::cerr);
+  const std::string formNote = settleOutputForm(o.in, o.input);
   const Frame frame = loadFrame(o.in.sourceFor(o.input, o.camera));
+  std::cerr << formNote;
   const Camera& camera = frame.camera;
   const Views views = loadViews(o.in, o.views, o.viewCameras);
   const Views neighbours = loadViews(o.in, o.neighbours, {});
