@@ -10,6 +10,7 @@
 //       (auxiliary views, default samples/corpus/views)
 //   ssrcl_score_corpus --corpus samples/corpus/environment --environment samples/corpus/environment/sky.exr
 //       --configs "medium;medium:fill=0;eevee"   (environment fill: filled, premultiplied, EEVEE)
+//   ssrcl_score_corpus --corpus samples/real   (scenes with an "environment" in corpus.json get that fill)
 //
 // A configuration is a preset name, optionally with settings after a colon:
 //   medium   high:spp=32   medium:thickness=0.01   medium:model=constant,thickness=0.005
@@ -24,7 +25,8 @@
 // render's base_color / metallic AOVs where it has them, else 1 as the corpus's reflectors have).
 // views (auxiliary views: the first N of <views dir>/<scene>.*.exr in name order, "all" every one;
 // samples/blender/make_views.py renders them; default 0),
-// "eevee" scores Blender EEVEE's own SSR (<scene>.eevee.exr) where it exists.
+// "eevee" scores Blender EEVEE's own SSR (<scene>.eevee.exr) where it exists; "eevee:form=glossy-pass"
+// its Specular Light x Specular Color against Cycles as it is (needs GlossCol in the EEVEE file).
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <chrono>
@@ -39,12 +41,12 @@
 #include "bench_report.hpp"
 #include "ssrcl/ssrcl.hpp"
 #include "support/cycles_reference.hpp"
-#include "support/exr_fixtures.hpp"
 
 namespace {
 
 struct Scene {
   std::string name, split, path;
+  std::string environment;  // the HDRI the scene was lit by (corpus.json "environment"), or empty
 };
 
 struct Config {
@@ -70,8 +72,12 @@ Config parseConfig(const std::string& spec) {
   Config c{spec};
   const auto colon = spec.find(':');
   const std::string preset = spec.substr(0, colon);
-  if (preset == "eevee") {
+  if (preset == "eevee") {  // eevee, or eevee:form=glossy-pass (Specular Light x Specular Color)
     c.eevee = true;
+    if (colon == std::string::npos) return c;
+    if (spec.substr(colon + 1) != "form=glossy-pass")
+      throw std::runtime_error("configuration '" + spec + "': eevee takes only form=glossy-pass");
+    c.glossyPassForm = true;
     return c;
   }
   c.settings = ssrcl::qualityPreset(preset);
@@ -140,7 +146,9 @@ std::vector<Scene> loadScenes(const std::string& corpus, const std::vector<std::
   for (const auto& s : manifest.at("scenes")) {
     const std::string name = s.at("name");
     if (!only.empty() && std::find(only.begin(), only.end(), name) == only.end()) continue;
-    scenes.push_back({name, s.at("split"), corpus + "/" + name + ".exr"});
+    const std::string environment = s.value("environment", std::string());
+    scenes.push_back({name, s.at("split"), corpus + "/" + name + ".exr",
+                      environment.empty() ? environment : corpus + "/" + environment});
   }
   return scenes;
 }
@@ -169,19 +177,6 @@ SceneViews loadSceneViews(const std::string& dir, const std::string& scene) {
     v.cameras.push_back(ssrcl::loadCameraJson((p.parent_path() / (p.stem().string() + ".camera.json")).string()));
   }
   return v;
-}
-
-// EEVEE's Specular Light pass is the same quantity as ours with A = 1 everywhere it rendered.
-ssrcl::Image eeveePass(const std::string& path) {
-  const ssrcl::test::ExrContents exr = ssrcl::test::readExr(path);
-  ssrcl::Image img(exr.width, exr.height, 3);
-  const char* names[] = {"ViewLayer.GlossDir.R", "ViewLayer.GlossDir.G", "ViewLayer.GlossDir.B"};
-  for (int c = 0; c < 3; ++c) {
-    auto it = exr.channels.find(names[c]);
-    if (it == exr.channels.end()) throw std::runtime_error(path + ": no channel " + names[c]);
-    for (size_t i = 0; i < it->second.values.size(); ++i) img.data[3 * i + c] = it->second.values[i];
-  }
-  return img;
 }
 
 // Ours (times E), Cycles, |difference| (each divided by the peak), our confidence A and the input
@@ -233,7 +228,8 @@ int main(int argc, char** argv) {
   app.add_option("--json", jsonPath, "Write every figure as JSON");
   app.add_option("--plot", plotPath, "Write the corpus mean error against time as SVG");
   app.add_option("--environment", environmentPath,
-                 "Environment fill from this equirect EXR (the scenes' HDRI; configs with fill=0 go without)");
+                 "Environment fill from this equirect EXR for every scene (default: each scene's corpus.json "
+                 "\"environment\", none where it has none; configs with fill=0 go without)");
   app.add_option("--views", viewsDir, "Auxiliary views of each scene: <dir>/<scene>.*.exr (default <corpus>/views)");
   app.add_option("--dump", dumpDir, "Write <scene>.<config index>.ppm: ours, Cycles and |difference| side by side");
   CLI11_PARSE(app, argc, argv);
@@ -249,11 +245,15 @@ int main(int argc, char** argv) {
     if (scenes.empty()) throw std::runtime_error("no scenes selected");
 
     ssrcl::Device device(ssrcl::DeviceType::Default);
-    const ssrcl::EnvironmentMap environment =
+    const ssrcl::EnvironmentMap givenEnvironment =
         environmentPath.empty() ? ssrcl::EnvironmentMap{} : ssrcl::loadEnvironmentMap(environmentPath);
     std::vector<std::vector<Score>> scores(configs.size(), std::vector<Score>(scenes.size()));
     for (size_t s = 0; s < scenes.size(); ++s) {
       const ssrcl::test::CyclesReference ref = ssrcl::test::loadCyclesReference(scenes[s].path);
+      const ssrcl::EnvironmentMap environment =
+          !environmentPath.empty()          ? givenEnvironment
+          : scenes[s].environment.empty() ? ssrcl::EnvironmentMap{}
+                                          : ssrcl::loadEnvironmentMap(scenes[s].environment);
       const auto& all = ref.groups.front().second;
       // For the glossy-pass form: the render's material AOVs (samples/blender/
       // make_tinted_glossy_scene.py), or the corpus's white metal, F0 = 1; and Cycles unscaled.
@@ -276,7 +276,8 @@ int main(int argc, char** argv) {
           const std::string path =
               (std::filesystem::path(scenes[s].path).parent_path() / (scenes[s].name + ".eevee.exr")).string();
           if (!std::filesystem::exists(path)) continue;
-          score.error = ssrcl::test::referenceError(ref, eeveePass(path), all);
+          score.error = ssrcl::test::referenceError(configs[c].glossyPassForm ? unscaled : ref,
+                                                    ssrcl::test::eeveeSpecular(path, configs[c].glossyPassForm), all);
           score.present = true;
           continue;
         }

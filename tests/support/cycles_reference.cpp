@@ -136,4 +136,21 @@ ReferenceError referenceError(const CyclesReference& ref, const Image& reflectio
   return e;
 }
 
+Image eeveeSpecular(const std::string& path, bool withColor) {
+  const ExrContents exr = readExr(path);
+  Image img(exr.width, exr.height, 3);
+  const auto channel = [&](const std::string& name) -> const std::vector<float>& {
+    auto it = exr.channels.find(name);
+    if (it == exr.channels.end()) throw std::runtime_error(path + ": no channel " + name);
+    return it->second.values;
+  };
+  for (int c = 0; c < 3; ++c) {
+    const std::string rgb(1, "RGB"[c]);
+    const std::vector<float>& light = channel("ViewLayer.GlossDir." + rgb);
+    const std::vector<float>* color = withColor ? &channel("ViewLayer.GlossCol." + rgb) : nullptr;
+    for (size_t i = 0; i < light.size(); ++i) img.data[3 * i + c] = light[i] * (color ? (*color)[i] : 1.0f);
+  }
+  return img;
+}
+
 }  // namespace ssrcl::test

@@ -53,4 +53,9 @@ struct ReferenceError {
 };
 ReferenceError referenceError(const CyclesReference& ref, const Image& reflection, const std::vector<size_t>& group);
 
+// Blender EEVEE's SSR from <scene>.eevee.exr: its Specular Light pass (GlossDir), the same quantity
+// as our pass with A = 1 wherever it rendered; withColor: times its Specular Color (GlossCol), which
+// holds the Fresnel as Cycles' glossy passes do (compare with Cycles unscaled).
+Image eeveeSpecular(const std::string& path, bool withColor);
+
 }  // namespace ssrcl::test
