@@ -105,6 +105,7 @@ Frame loadFrame(const FrameSource& given) {
   FrameSource s = given;
   s.outputForm = chooseOutputForm(given).form;
   Frame frame;
+  frame.outputForm = *s.outputForm;
   frame.passes = passesOf(s);
   const GBufferSource& source = frame.passes;
   GBuffer& g = frame.gbuffer;

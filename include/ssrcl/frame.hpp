@@ -55,6 +55,9 @@ struct Frame {
   Camera displayCamera;      // of the display window, as written into the output's header
   std::string cameraSource;  // the camera file, or which header attributes it came from
   GBufferSource passes;      // the files and channels it was read from, the preset resolved
+  // The form its pass is wanted in (FrameSource::outputForm, or chooseOutputForm's): for
+  // GlossyPass, turn the pipeline's reflection into it with applyGlossyPassForm.
+  OutputForm outputForm = OutputForm::Incident;
 };
 
 // The form an unset FrameSource::outputForm takes: glossy-pass where material fields are given,

@@ -63,7 +63,10 @@ int main(int argc, char** argv) {
       std::printf("no reflection found (%zu pixels) or no progress reported (%d)\n", hits, reports);
       return 1;
     }
-    ssrcl::writeReflectionExr(argv[2], pipeline.output("reflection"), pipeline.output("distance"), frame.windows);
+    ssrcl::Image pass = pipeline.output("reflection");
+    if (frame.outputForm == ssrcl::OutputForm::GlossyPass)  // a Blender file with base_color, metallic AOVs
+      ssrcl::applyGlossyPassForm(pass, frame.gbuffer, frame.camera, std::nullopt);
+    ssrcl::writeReflectionExr(argv[2], pass, pipeline.output("distance"), frame.windows);
   } catch (const ssrcl::Error& e) {
     std::printf("ssrcl error (%s): %s\n", ssrcl::errorCodeName(e.code()), e.what());
     return 1;
