@@ -45,6 +45,11 @@ std::string shapeText(const PipelineInputs::Shape& s) {
 
 void PipelineInputs::set(const std::string& name, const Image& image) {
   checkName(name);
+  // An empty image unsets the input: nothing of it is kept, so a temporary Image() is safe.
+  if (image.empty()) {
+    sources_.erase(name);
+    return;
+  }
   sources_[name] = {&image, {}};
 }
 
