@@ -20,12 +20,17 @@ std::string headerCameraFile(const GBufferSource& source) {
   return source.positionChannels.empty() ? source.depthFile : source.positionFile;
 }
 
+// Whether `s` names any material pass (which asks for the glossy-pass form).
+bool namesMaterialPasses(const FrameSource& s) {
+  return !s.f0Channels.empty() || !s.baseColorChannels.empty() || !s.metallicChannel.empty() || !s.materialFile.empty();
+}
+
 // The material passes of the glossy-pass form in `passes` (whose layer is resolved): the F0
 // channels given, or the base colour and metallic channels, by default Blender AOVs named
 // base_color (colour) and metallic (value).
 void nameMaterialPasses(const FrameSource& s, GBufferSource& passes) {
   if (s.outputForm.value_or(OutputForm::Incident) != OutputForm::GlossyPass) {
-    if (!s.f0Channels.empty() || !s.baseColorChannels.empty() || !s.metallicChannel.empty() || !s.materialFile.empty())
+    if (namesMaterialPasses(s))
       throw Error(ErrorCode::InvalidArgument,
                   "--f0-channels, --base-color-channels, --metallic-channel and --material only apply with "
                   "--output-form glossy-pass");
@@ -92,8 +97,7 @@ std::string sidecarCameraPath(const std::string& exr) {
 
 OutputFormChoice chooseOutputForm(const FrameSource& s) {
   if (s.outputForm) return {*s.outputForm, ""};
-  if (!s.f0Channels.empty() || !s.baseColorChannels.empty() || !s.metallicChannel.empty() || !s.materialFile.empty())
-    return {OutputForm::GlossyPass, ""};  // naming the material passes asks for the form that reads them
+  if (namesMaterialPasses(s)) return {OutputForm::GlossyPass, ""};  // naming the material passes asks for the form that reads them
   if (!detail::rendererPreset(s.renderer).glossyPassByDefault) return {OutputForm::Incident, ""};
   FrameSource probe = s;
   probe.outputForm = OutputForm::GlossyPass;
