@@ -27,7 +27,7 @@ inline float3 environment_bilinear(__global const float* texels, HzbLevel l, flo
 __kernel void environment_fill(EnvironmentParams params, __global const float4* positions,
                                __global const float4* normals, __global const float* texels,
                                __global const HzbLevel* levels, __global float4* rgba) {
-  const int2 size = (int2)(params.width, params.height);
+  const int2 size = (int2)(params.frame.width, params.frame.height);
   const float16 view_to_world = vload16(0, params.view_to_world);
   const int level_count = params.level_count;
   const int roughness_linear = SSRCL_ROUGHNESS_MAPPING == SSRCL_ROUGHNESS_LINEAR;

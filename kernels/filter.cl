@@ -5,9 +5,9 @@
 __kernel void denoise(FilterParams params, __global const int* tile_list, __global const float4* positions, __global const float4* normals, __global const int* pixel_rays,
                       __global const float4* in_rgba, __global const float* in_distance,
                       __global float4* out_rgba, __global float* out_distance) {
-  const int2 size = (int2)(params.width, params.height);
-  const float mirror_roughness = params.mirror_roughness;
-  int2 xy = tile_pixel(tile_list, params.tiles_x);
+  const int2 size = (int2)(params.frame.width, params.frame.height);
+  const float mirror_roughness = params.frame.mirror_roughness;
+  int2 xy = tile_pixel(tile_list, params.frame.tiles_x);
   int x = xy.x, y = xy.y;
   if (x >= size.x || y >= size.y) return;
   int i = y * size.x + x;

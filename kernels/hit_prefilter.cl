@@ -21,8 +21,8 @@ inline long batch_record(TraceParams params, __global const int* ray_list, __glo
 }
 
 inline int lookup_pixel(TraceParams params, float2 s) {
-  int2 cell = clamp(convert_int2(floor(s)), (int2)(0), (int2)(params.width - 1, params.height - 1));
-  return cell.y * params.width + cell.x;
+  int2 cell = clamp(convert_int2(floor(s)), (int2)(0), (int2)(params.frame.width - 1, params.frame.height - 1));
+  return cell.y * params.frame.width + cell.x;
 }
 
 __kernel void count_hits(TraceParams params, __global const int* ray_list, __global const int* pixel_rays,
@@ -41,7 +41,7 @@ __kernel void count_hits(TraceParams params, __global const int* ray_list, __glo
 // speckle back, 2 + hits -0.009 (docs/BENCHMARKS.md "Speckle").
 __kernel void weights_from_counts(TraceParams params, __global float4* pyramid, __global int* counts) {
   int i = get_global_id(0);
-  if (i >= params.width * params.height) return;
+  if (i >= params.frame.width * params.frame.height) return;
   pyramid[i].w = pyramid[i].w > 0.0f ? 1.0f + (float)counts[i] : 0.0f;
   counts[i] = 0;
 }

@@ -89,11 +89,11 @@ __kernel void resolve_accumulate(ResolveParams params, __global const int* tile_
                                  __global const float4* ray_radiance, __global float4* acc_radiance,
                                  __global float2* acc_weight, __global const uchar* ray_state,
                                  __global float* acc_sources) {
-  const int2 size = (int2)(params.width, params.height);
-  const float16 inv_proj = vload16(0, params.inv_proj);
+  const int2 size = (int2)(params.frame.width, params.frame.height);
+  const float16 inv_proj = vload16(0, params.frame.inv_proj);
   const int batch_size = params.batch_size, first_sample = params.first_sample, reuse_radius = params.reuse_radius;
-  const float mirror_roughness = params.mirror_roughness;
-  int2 xy = tile_pixel(tile_list, params.tiles_x);
+  const float mirror_roughness = params.frame.mirror_roughness;
+  int2 xy = tile_pixel(tile_list, params.frame.tiles_x);
   int x = xy.x, y = xy.y;
   if (x >= size.x || y >= size.y) return;
   int i = y * size.x + x;
@@ -190,8 +190,8 @@ __kernel void resolve_finalize(ResolveParams params, __global const int* tile_li
                                __global const float4* acc_radiance, __global const float2* acc_weight,
                                __global float4* out_rgba, __global float* out_distance,
                                __global const float* acc_sources, __global float2* out_view) {
-  const int2 size = (int2)(params.width, params.height);
-  int2 xy = tile_pixel(tile_list, params.tiles_x);
+  const int2 size = (int2)(params.frame.width, params.frame.height);
+  int2 xy = tile_pixel(tile_list, params.frame.tiles_x);
   int x = xy.x, y = xy.y;
   if (x >= size.x || y >= size.y) return;
   int i = y * size.x + x;

@@ -71,10 +71,10 @@ __kernel void setup(SetupParams params, __global const float* color_in,
                     __global int* pixel_rays, __global int* ray_list, __global int* tile_list,
                     __global int* ray_count, __global float4* plane_out) {
   __local int group_count, group_base, group_rays, group_traced, group_reflecting;
-  const int2 size = (int2)(params.width, params.height);
-  const float16 normal_matrix = vload16(0, params.normal_matrix), inv_proj = vload16(0, params.inv_proj);
+  const int2 size = (int2)(params.frame.width, params.frame.height);
+  const float16 normal_matrix = vload16(0, params.frame.normal_matrix), inv_proj = vload16(0, params.frame.inv_proj);
   const PixelLines lines = pixel_lines(inv_proj, size);
-  const float near_plane = params.near_plane, far_plane = params.far_plane;
+  const float near_plane = params.frame.near_plane, far_plane = params.frame.far_plane;
   const int color_channels = params.color_channels, classify = params.classify;
   const float constant_roughness = params.constant_roughness;
   int x = get_global_id(0), y = get_global_id(1);
@@ -140,7 +140,7 @@ __kernel void setup(SetupParams params, __global const float* color_in,
     bool reflects = surface && normal_ok && r <= params.max_roughness && dot(view_dir, nv) < 0.0f;
     bool strided_out = (x % params.trace_stride) != 0 || (y % params.trace_stride) != 0;
     int rays = !reflects                ? 0
-               : r <= params.mirror_roughness    ? 1
+               : r <= params.frame.mirror_roughness    ? 1
                : strided_out              ? -1
                                           : glossy_rays(r, params.samples_per_pixel, params.full_rays_roughness);
     pixel_rays[i] = rays;

@@ -61,16 +61,24 @@ typedef struct {
 // Matrices are 16 floats in row-major order (the first four are the first row), acting on column
 // vectors; the kernels load them as float16.
 
+// What every stage's parameters begin with: the frame's camera, size and mirror cut-off, filled
+// once per execute by the host (frameConstants, host/pipeline/stage_support.hpp).
+typedef struct {
+  float proj[16];
+  float inv_proj[16];
+  float normal_matrix[16];  // world -> view for normals (inverse transpose of the view's 3x3)
+  ssrcl_int width, height;
+  ssrcl_int tiles_x;        // SSRCL_TILE tiles across
+  float near_plane, far_plane;
+  float mirror_roughness;   // at or below: one mirror ray
+} FrameConstants;
+
 // kernels/setup.cl
 typedef struct {
-  float normal_matrix[16];  // world -> view for normals (inverse transpose of the view's 3x3)
-  float inv_proj[16];
-  ssrcl_int width, height;
-  float near_plane, far_plane;
+  FrameConstants frame;
   ssrcl_int color_channels;     // 3 or 4; only RGB is read
   float constant_roughness;     // >= 0 replaces the roughness image
   float max_roughness;          // rougher pixels get no ray
-  float mirror_roughness;       // at or below: one mirror ray
   ssrcl_int samples_per_pixel;  // rays per glossy pixel
   float full_rays_roughness;    // > 0: ray counts follow roughness up to this
   ssrcl_int trace_stride;       // 1, or 2: glossy rays in one pixel of each 2x2 block
@@ -81,23 +89,19 @@ typedef struct {
 
 // kernels/thickness.cl
 typedef struct {
-  ssrcl_int width, height;
+  FrameConstants frame;
   ssrcl_int axis;  // 0: rows, 1: columns
   float scale, min_rel, max_rel;
 } ThicknessParams;
 
 // kernels/trace.cl (tracer, roughness mapping and counting mode are program defines)
 typedef struct {
-  float proj[16];
-  float inv_proj[16];
-  ssrcl_int width, height;
-  float near_plane, far_plane;
+  FrameConstants frame;
   ssrcl_int level_count;   // HZB and colour pyramid levels
   ssrcl_int listed;        // pixels in the ray list
   ssrcl_int batch_size;    // samples per pixel in this pass's ray records
   ssrcl_int first_sample;  // sample index of the pass's first slot
   ssrcl_uint seed;
-  float mirror_roughness;
   float cone_scale;        // prefiltered hits: share of the lobe per ray; 0 reads full resolution
   float linear_step;       // linear tracer's step in pixels
   ssrcl_int max_iterations;
@@ -131,41 +135,34 @@ typedef struct {
 } ViewCamera;
 
 typedef struct {
-  float inv_proj[16];      // the main camera's
-  float proj[16];          // the main camera's
-  ssrcl_int width, height; // the main frame's
+  FrameConstants frame;    // the main frame's
   ssrcl_int listed, batch_size, first_sample;  // as the trace's batch
   ssrcl_int view;          // the view this pass traces in
   ssrcl_int rank;          // rays for which it is their rank-th best view
   ssrcl_int view_count;
   ssrcl_int level_count;   // the view's HZB and colour levels
   ssrcl_int max_iterations;
-  float mirror_roughness, cone_scale, linear_step, edge_fade;
+  float cone_scale, linear_step, edge_fade;
   float radiance_limit;    // a view hit's mean rgb is scaled down to at most this (ViewStage::limitRadiance)
 } ViewTraceParams;
 
 // kernels/resolve.cl (roughness mapping is a program define)
 typedef struct {
-  float inv_proj[16];
-  ssrcl_int width, height;
-  ssrcl_int tiles_x;
+  FrameConstants frame;
   ssrcl_int batch_size, first_sample;
-  float mirror_roughness;
   ssrcl_int reuse_radius;
   ssrcl_int view_count;  // auxiliary views (programs built with SSRCL_VIEWS)
 } ResolveParams;
 
 // kernels/filter.cl
 typedef struct {
-  ssrcl_int width, height;
-  ssrcl_int tiles_x;
-  float mirror_roughness;
+  FrameConstants frame;
 } FilterParams;
 
 // kernels/environment.cl (roughness mapping is a program define)
 typedef struct {
+  FrameConstants frame;
   float view_to_world[16];  // view-space directions into the environment's frame
-  ssrcl_int width, height;
   ssrcl_int level_count;    // prefiltered levels, one per roughness step
   float intensity;
 } EnvironmentParams;

@@ -40,7 +40,7 @@ inline bool joined(__global const float4* positions, int k, int length, int step
 // to `row`; axis 1 compares with its column's and rescales the plane.
 __kernel void surface_thickness(ThicknessParams params, __global const float4* positions,
                                 __global float2* row, __global float4* planes) {
-  const int2 size = (int2)(params.width, params.height);
+  const int2 size = (int2)(params.frame.width, params.frame.height);
   const int axis = params.axis;
   const float scale = params.scale, min_rel = params.min_rel, max_rel = params.max_rel;
   int line = get_global_id(0);

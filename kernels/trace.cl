@@ -320,10 +320,10 @@ __kernel void trace_rays(TraceParams params, __global const float* hzb, __global
                          __global const float4* color_pyramid, __global const float* base, __global const float* specular,
                          __global const float* f0, __global const float2* albedo, __global float4* ray_hit,
                          __global float4* ray_radiance, __global uchar* ray_state) {
-  const int2 size = (int2)(params.width, params.height);
-  const float16 proj = vload16(0, params.proj), inv_proj = vload16(0, params.inv_proj);
-  const float near_plane = params.near_plane, far_plane = params.far_plane, linear_step = params.linear_step;
-  const float mirror_roughness = params.mirror_roughness, edge_fade = params.edge_fade;
+  const int2 size = (int2)(params.frame.width, params.frame.height);
+  const float16 proj = vload16(0, params.frame.proj), inv_proj = vload16(0, params.frame.inv_proj);
+  const float near_plane = params.frame.near_plane, far_plane = params.frame.far_plane, linear_step = params.linear_step;
+  const float mirror_roughness = params.frame.mirror_roughness, edge_fade = params.edge_fade;
   const int batch_size = params.batch_size, level_count = params.level_count;
   const uint seed = params.seed;
   int gid = get_global_id(0);

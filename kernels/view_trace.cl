@@ -83,7 +83,7 @@ __kernel void trace_views(ViewTraceParams params, __global const ViewCamera* vie
                           __global const float4* positions, __global const float4* normals,
                           __global const float4* planes, __global const float4* color_pyramid,
                           __global float4* ray_hit, __global float4* ray_radiance, __global uchar* ray_state) {
-  const int2 main_size = (int2)(params.width, params.height);
+  const int2 main_size = (int2)(params.frame.width, params.frame.height);
   const int batch_size = params.batch_size;
   int gid = get_global_id(0);
   if (gid >= params.listed * batch_size) return;
@@ -99,7 +99,7 @@ __kernel void trace_views(ViewTraceParams params, __global const ViewCamera* vie
   if (!hit && !(dot(h.xyz, h.xyz) > 0.0f)) return;  // no ray (facing away, below the surface)
 
   float3 v;
-  float3 p = pixel_view_point(vload16(0, params.inv_proj), main_size, (int2)(i % main_size.x, i / main_size.x),
+  float3 p = pixel_view_point(vload16(0, params.frame.inv_proj), main_size, (int2)(i % main_size.x, i / main_size.x),
                               main_positions[i].w, &v);
   float3 dir = hit ? normalize(h.xyz - p) : h.xyz;
   float main_distance = hit ? length(h.xyz - p) : INFINITY;
@@ -137,7 +137,7 @@ __kernel void trace_views(ViewTraceParams params, __global const ViewCamera* vie
   // The texel hit: its surface point, not the ray's (which may pass within its thickness).
   if (cam.other_time) {
     float3 texel = mat_mul(vload16(0, cam.to_main), (float4)(positions[cell.y * size.x + cell.x].xyz, 1.0f)).xyz;
-    if (moved_since(vload16(0, params.proj), main_size, main_positions, texel)) return;
+    if (moved_since(vload16(0, params.frame.proj), main_size, main_positions, texel)) return;
   }
   float distance = length(hit_main - p);
   float confidence = edge_confidence(ray_screen(&ray, t), size, params.edge_fade);
@@ -158,7 +158,7 @@ __kernel void trace_views(ViewTraceParams params, __global const ViewCamera* vie
     return;
   }
   float nr_w = main_normals[i].w;
-  float alpha = nr_w <= params.mirror_roughness ? 0.0f : fmax(roughness_to_alpha(nr_w, SSRCL_ROUGHNESS_MAPPING), 1e-4f);
+  float alpha = nr_w <= params.frame.mirror_roughness ? 0.0f : fmax(roughness_to_alpha(nr_w, SSRCL_ROUGHNESS_MAPPING), 1e-4f);
   float3 color = sanitize_radiance3(hit_color(&sc, color_pyramid, proj, &ray, t, cell, distance, alpha, params.cone_scale).xyz);
   float mean = (color.x + color.y + color.z) / 3.0f;
   if (mean > params.radiance_limit) color *= params.radiance_limit / mean;

@@ -86,20 +86,23 @@ std::vector<Image> buildHzb(const ssrcl::Device& device, const Inputs& in, const
   hzb.configure(d);
   colors.configure(d, s);
   DeviceBuffers buffers;
-  setup.plan(buffers, frame, 3, false);
-  hzb.plan(buffers, frame);
-  colors.plan(buffers, frame);
+  FrameResources resources;
+  resources.beginPlan();
+  setup.plan(resources, buffers, frame, 3, false);
+  hzb.plan(resources, buffers, frame);
+  colors.plan(resources, buffers, frame);
   buffers.allocate(d, "the test frame");
-  setup.bind(hzb.hzb, colors.pyramid);
-  hzb.bind(d.queue);
+  setup.bind(resources);
+  hzb.bind(d.queue, resources);
   StageEvents events;
   setup.enqueue(d.queue, {in.color.data.data(), in.depth.data.data(), in.normal.data.data(), nullptr},
-                SetupStage::params(frame, CameraConstants(camera), s, 3), events);
+                SetupStage::params(frameConstants(frame, camera, s), s, 3), events);
   hzb.enqueue(d.queue, events);
+  const StageAccess readBack{"the test", {Role::DepthPyramid}, {}};
   std::vector<Image> mips;
   for (const HzbLevel& l : frame.levels) {
     mips.emplace_back(l.width, l.height, 1);
-    d.queue.enqueueReadBuffer(hzb.hzb, CL_TRUE, l.offset * sizeof(float), mips.back().data.size() * sizeof(float),
+    d.queue.enqueueReadBuffer(resources.read(readBack, Role::DepthPyramid), CL_TRUE, l.offset * sizeof(float), mips.back().data.size() * sizeof(float),
                               mips.back().data.data());
   }
   return mips;

@@ -1,7 +1,7 @@
 // The stages' argument bindings against the kernels: each bindArgs names the parameters it binds
 // (host/pipeline/stage_support.hpp), checked against the kernel's own (built with
 // -cl-kernel-arg-info). A binding out of step with its kernel must fail at commit, naming both,
-// and every stage of a full pipeline (views, environment, denoise, prefilter) must agree.
+// and every stage of each configuration (views, environment, denoise, prefilter) must agree.
 #include <gtest/gtest.h>
 
 #include "pipeline/device_impl.hpp"
@@ -44,24 +44,33 @@ TEST(KernelArgs, SwappedMissingOrExtraArgumentsAreRefusedByName) {
   EXPECT_EQ(refusal(k, 0, "hzb, levels", 3), "kernel hzb_reduce: the host binds 3 arguments but names 2");
 }
 
-// Every stage binds through the check: a pipeline using them all commits and traces.
-TEST(KernelArgs, EveryStageOfAFullPipelineAgreesWithItsKernels) {
+// Every stage binds through the check, and from the frame resource table only the roles it
+// declares (host/pipeline/frame_resources.hpp): each configuration binds a different set (the
+// filter's input or the outputs, hit counts, views, the environment), and every one commits and
+// traces.
+TEST(KernelArgs, EveryStageOfEachConfigurationAgreesWithItsKernels) {
   const ssrcl::test::Scene scene = ssrcl::test::makeScene("spheres_on_mirror");
   const ssrcl::Camera camera = ssrcl::test::makeCamera(scene.view, 64, 36);
   const ssrcl::test::AnalyticGBuffer gbuffer = ssrcl::test::renderGBuffer(scene, camera);
   ssrcl::Image sky(16, 8, 3);
   sky.data.assign(sky.data.size(), 0.5f);
   const ssrcl::EnvironmentMap env = ssrcl::prefilterEnvironment(sky);
-  ssrcl::Pipeline p(sharedTestDevice());
-  p.setGBuffer(gbuffer);
-  p.setCamera(camera);
-  p.setView(0, gbuffer, camera, "itself");
-  p.setEnvironment(env);
-  p.settings() = ssrcl::qualityPreset("high");  // denoise, prefilter, adaptive thickness
-  EXPECT_NO_THROW({
-    p.commit();
-    p.execute();
-  });
+  for (const char* preset : {"draft", "medium", "high"})  // high: denoise, prefilter, adaptive thickness
+    for (bool extras : {false, true}) {
+      SCOPED_TRACE(std::string(preset) + (extras ? " with a view and an environment" : ""));
+      ssrcl::Pipeline p(sharedTestDevice());
+      p.setGBuffer(gbuffer);
+      p.setCamera(camera);
+      if (extras) {
+        p.setView(0, gbuffer, camera, "itself");
+        p.setEnvironment(env);
+      }
+      p.settings() = ssrcl::qualityPreset(preset);
+      EXPECT_NO_THROW({
+        p.commit();
+        p.execute();
+      });
+    }
 }
 
 }  // namespace

@@ -1,9 +1,10 @@
 #include "color_pyramid_stage.hpp"
 
-#include "setup_stage.hpp"
-#include "trace_stage.hpp"
-
 namespace ssrcl::detail {
+
+// Prefiltered hits replace the rough rays' radiance with their footprint's mean.
+const StageAccess ColorPyramidStage::access{
+    "color_mips", {Role::PyramidLevels, Role::RayList, Role::PixelRays}, {Role::ColorPyramid, Role::RayRadiance}};
 
 void ColorPyramidStage::configure(Device::Impl& device, const TraceSettings& s, bool hitCounts) {
   reduce_ = s.prefilter;
@@ -18,28 +19,31 @@ void ColorPyramidStage::configure(Device::Impl& device, const TraceSettings& s, 
   lookup_ = cl::Kernel(program, "prefilter_hits");
 }
 
-void ColorPyramidStage::plan(DeviceBuffers& buffers, const FrameShape& frame) {
+void ColorPyramidStage::plan(FrameResources& resources, DeviceBuffers& buffers, const FrameShape& frame) {
   frame_ = frame;
-  buffers.add(pyramid, (reduce_ ? frame.pyramidTexels() : frame.pixels()) * sizeof(cl_float4));
+  resources.plan(access, buffers, Role::ColorPyramid,
+                 (reduce_ ? frame.pyramidTexels() : frame.pixels()) * sizeof(cl_float4));
   buffers.add(counts_, reduce_ && hitCounts_ ? frame.pixels() * sizeof(cl_int) : 0);
 }
 
-void ColorPyramidStage::bind(const HzbStage& hzb) {
-  if (reduce_) bindArgs(reduce_kernel_, 0, "pyramid, levels", pyramid, hzb.levels);
+// Without hit counts (an auxiliary view's pyramid, read at once with the weights setup wrote) only
+// the reduction is bound.
+void ColorPyramidStage::bind(const FrameResources& resources) {
+  if (!reduce_) return;
+  auto in = [&](Role role) { return resources.read(access, role); };
+  const cl::Buffer& pyramid = resources.write(access, Role::ColorPyramid);
+  bindArgs(reduce_kernel_, 0, "pyramid, levels", pyramid, in(Role::PyramidLevels));
+  if (!hitCounts_) return;
+  const cl::Buffer& radiance = resources.write(access, Role::RayRadiance);
+  bindArgs(count_, 1, "ray_list, pixel_rays, ray_radiance, counts", in(Role::RayList), in(Role::PixelRays), radiance,
+           counts_);
+  bindArgs(weights_, 1, "pyramid, counts", pyramid, counts_);
+  bindArgs(lookup_, 1, "ray_list, pixel_rays, pyramid, levels, ray_radiance", in(Role::RayList), in(Role::PixelRays),
+           pyramid, in(Role::PyramidLevels), radiance);
 }
 
 void ColorPyramidStage::reduce(cl::CommandQueue& q, StageEvents& events) {
   if (reduce_) reducePyramid(q, reduce_kernel_, frame_, events, "color_mips");
-}
-
-void ColorPyramidStage::bind(const HzbStage& hzb, const SetupStage& setup, const TraceStage& trace) {
-  bind(hzb);
-  if (!reduce_) return;
-  bindArgs(count_, 1, "ray_list, pixel_rays, ray_radiance, counts", setup.rayList, setup.pixelRays, trace.rayRadiance,
-           counts_);
-  bindArgs(weights_, 1, "pyramid, counts", pyramid, counts_);
-  bindArgs(lookup_, 1, "ray_list, pixel_rays, pyramid, levels, ray_radiance", setup.rayList, setup.pixelRays, pyramid,
-           hzb.levels, trace.rayRadiance);
 }
 
 void ColorPyramidStage::enqueue(cl::CommandQueue& q, StageEvents& events) {

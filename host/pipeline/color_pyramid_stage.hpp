@@ -7,25 +7,20 @@
 
 namespace ssrcl::detail {
 
-class SetupStage;
-class TraceStage;
-
 class ColorPyramidStage {
  public:
   // hitCounts false: a pyramid read at once with setup's weights (an auxiliary view's), which
   // needs neither the hit counts nor the kernels that weight and look up by them.
+  static const StageAccess access;
+
   void configure(Device::Impl& device, const TraceSettings& s, bool hitCounts = true);
-  void plan(DeviceBuffers& buffers, const FrameShape& frame);
-  void bind(const HzbStage& hzb, const SetupStage& setup, const TraceStage& trace);
-  // A pyramid read at once, with the weights setup wrote (an auxiliary view's: no hit counts).
-  void bind(const HzbStage& hzb);
+  void plan(FrameResources& resources, DeviceBuffers& buffers, const FrameShape& frame);
+  void bind(const FrameResources& resources);
   void reduce(cl::CommandQueue& q, StageEvents& events);
   // Clears the hit counts before the first batch.
   void enqueue(cl::CommandQueue& q, StageEvents& events);
   // After a batch (the trace's own parameters): counts its hits, reduces, looks the hits up.
   void prefilterHits(cl::CommandQueue& q, const TraceParams& params, StageEvents& events);
-
-  cl::Buffer pyramid;  // (rgb * hits, hits) per texel, levels as the HZB's; level 0 (rgb, hits)
 
  private:
   bool reduce_ = false, hitCounts_ = true;

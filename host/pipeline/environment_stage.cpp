@@ -6,6 +6,8 @@
 
 namespace ssrcl::detail {
 
+const StageAccess EnvironmentStage::access{"environment", {Role::Positions, Role::Normals}, {Role::Reflection}};
+
 void EnvironmentStage::validate(const EnvironmentMap& map) {
   const std::string name = map.source.empty() ? "environment" : map.source;
   if (map.levels.size() < 2)
@@ -38,7 +40,7 @@ void EnvironmentStage::plan(DeviceBuffers& buffers, const FrameShape& frame) {
   buffers.add(levels_, packed_.size() * sizeof(HzbLevel), CL_MEM_READ_ONLY);
 }
 
-void EnvironmentStage::bind(cl::CommandQueue& q, const SetupStage& setup, const cl::Buffer& rgba) {
+void EnvironmentStage::bind(cl::CommandQueue& q, const FrameResources& resources) {
   if (!map_) return;
   size_t offset = 0;
   for (const Image& level : map_->levels) {
@@ -46,12 +48,12 @@ void EnvironmentStage::bind(cl::CommandQueue& q, const SetupStage& setup, const 
     offset += level.data.size() * sizeof(float);
   }
   q.enqueueWriteBuffer(levels_, CL_TRUE, 0, packed_.size() * sizeof(HzbLevel), packed_.data());
-  bindArgs(kernel_, 1, "positions, normals, texels, levels, rgba", setup.positions, setup.normals, texels_, levels_,
-           rgba);
+  bindArgs(kernel_, 1, "positions, normals, texels, levels, rgba", resources.read(access, Role::Positions),
+           resources.read(access, Role::Normals), texels_, levels_, resources.write(access, Role::Reflection));
 }
 
-void EnvironmentStage::enqueue(cl::CommandQueue& q, const glm::dmat4& view, const TraceSettings& s,
-                               StageEvents& events) {
+void EnvironmentStage::enqueue(cl::CommandQueue& q, const FrameConstants& frame, const glm::dmat4& view,
+                               const TraceSettings& s, StageEvents& events) {
   if (!map_) return;
   // View -> world is the inverse of the view's rotation (the kernel's lookup ignores a uniform
   // scale); then the mapping's rotation about +Z (a Mapping node's Rotation Z).
@@ -59,9 +61,8 @@ void EnvironmentStage::enqueue(cl::CommandQueue& q, const glm::dmat4& view, cons
   const glm::dmat3 rotation(
       glm::rotate(glm::dmat4(1.0), glm::radians(double(s.environmentRotation)), glm::dvec3(0, 0, 1)));
   EnvironmentParams p{};
+  p.frame = frame;
   toRowMajor(glm::dmat4(rotation * toWorld), p.view_to_world);
-  p.width = frame_.width;
-  p.height = frame_.height;
   p.level_count = static_cast<shared::ssrcl_int>(packed_.size());
   p.intensity = s.environmentIntensity;
   kernel_.setArg(0, p);

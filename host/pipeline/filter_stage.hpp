@@ -1,23 +1,22 @@
 #pragma once
 // The optional edge-aware filter (kernels/filter.cl) after the resolve, on the listed tiles.
-// With it on, the resolve writes to this stage's input buffers instead of the outputs.
-#include "setup_stage.hpp"
+// With it on, the resolve writes to the resolved roles this stage plans instead of the outputs.
+#include "frame_resources.hpp"
 
 namespace ssrcl::detail {
 
 class FilterStage {
  public:
+  static const StageAccess access;
+
   void configure(Device::Impl& device, const TraceSettings& s);
   bool enabled() const { return enabled_; }
-  void plan(DeviceBuffers& buffers, const FrameShape& frame);
-  void bind(const SetupStage& setup, const cl::Buffer& rgba, const cl::Buffer& distance);
-  void enqueue(cl::CommandQueue& q, const TraceSettings& s, int tiles, StageEvents& events);
-
-  cl::Buffer resolvedRgba, resolvedDistance;  // its input
+  void plan(FrameResources& resources, DeviceBuffers& buffers, const FrameShape& frame);
+  void bind(const FrameResources& resources);
+  void enqueue(cl::CommandQueue& q, const FrameConstants& frame, int tiles, StageEvents& events);
 
  private:
   bool enabled_ = false;
-  FrameShape frame_;
   cl::Kernel kernel_;
 };
 

@@ -2,19 +2,22 @@
 
 namespace ssrcl::detail {
 
+const StageAccess HzbStage::access{"hzb", {}, {Role::DepthPyramid, Role::PyramidLevels}};
+
 void HzbStage::configure(Device::Impl& device) {
   kernel_ = cl::Kernel(device.program({"ssrcl_shared.h", "common.cl", "hzb.cl"}), "hzb_reduce");
 }
 
-void HzbStage::plan(DeviceBuffers& buffers, const FrameShape& frame) {
+void HzbStage::plan(FrameResources& resources, DeviceBuffers& buffers, const FrameShape& frame) {
   frame_ = frame;
-  buffers.add(hzb, frame.pyramidTexels() * sizeof(float));
-  buffers.add(levels, frame.levels.size() * sizeof(HzbLevel), CL_MEM_READ_ONLY);
+  resources.plan(access, buffers, Role::DepthPyramid, frame.pyramidTexels() * sizeof(float));
+  resources.plan(access, buffers, Role::PyramidLevels, frame.levels.size() * sizeof(HzbLevel), CL_MEM_READ_ONLY);
 }
 
-void HzbStage::bind(cl::CommandQueue& q) {
+void HzbStage::bind(cl::CommandQueue& q, const FrameResources& resources) {
+  const cl::Buffer& levels = resources.write(access, Role::PyramidLevels);
   q.enqueueWriteBuffer(levels, CL_TRUE, 0, frame_.levels.size() * sizeof(HzbLevel), frame_.levels.data());
-  bindArgs(kernel_, 0, "hzb, levels", hzb, levels);
+  bindArgs(kernel_, 0, "hzb, levels", resources.write(access, Role::DepthPyramid), levels);
 }
 
 // Work-groups of one 64-texel row: PoCL vectorises a group's work-item loop along x, and the reduction

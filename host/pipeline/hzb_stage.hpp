@@ -1,19 +1,18 @@
 #pragma once
 // The HZB (kernels/hzb.cl): the min-depth pyramid the Hi-Z tracer descends. Setup writes level 0;
-// this stage reduces the others. Owns the level table the colour pyramid shares.
-#include "stage_support.hpp"
+// this stage reduces the others. Plans the level table the colour pyramid shares.
+#include "frame_resources.hpp"
 
 namespace ssrcl::detail {
 
 class HzbStage {
  public:
-  void configure(Device::Impl& device);
-  void plan(DeviceBuffers& buffers, const FrameShape& frame);
-  void bind(cl::CommandQueue& q);  // writes the level table
-  void enqueue(cl::CommandQueue& q, StageEvents& events);
+  static const StageAccess access;
 
-  cl::Buffer hzb;     // every level packed, level 0 at offset 0
-  cl::Buffer levels;  // HzbLevel per level
+  void configure(Device::Impl& device);
+  void plan(FrameResources& resources, DeviceBuffers& buffers, const FrameShape& frame);
+  void bind(cl::CommandQueue& q, const FrameResources& resources);  // writes the level table
+  void enqueue(cl::CommandQueue& q, StageEvents& events);
 
  private:
   FrameShape frame_;

@@ -5,6 +5,7 @@
 #include "color_pyramid_stage.hpp"
 #include "environment_stage.hpp"
 #include "filter_stage.hpp"
+#include "frame_resources.hpp"
 #include "hzb_stage.hpp"
 #include "image_views.hpp"
 #include "pipeline_inputs.hpp"
@@ -49,6 +50,7 @@ struct Pipeline::Impl {
   size_t committedViews = 0;
 
   DeviceBuffers buffers;
+  FrameResources resources;  // the buffers the stages share, by role
   SetupStage setup;
   ThicknessStage thickness;
   HzbStage hzb;
@@ -58,7 +60,8 @@ struct Pipeline::Impl {
   FilterStage filter;
   EnvironmentStage environmentFill;
   ViewStage viewStage;
-  cl::Buffer outRgba, outDistance, outView;
+  // The pipeline plans the outputs, clears what the resolve does not write and downloads them.
+  static const StageAccess access;
 
   Image reflection, distance, view;
   StageTimes times;
@@ -70,6 +73,8 @@ struct Pipeline::Impl {
   void report(double fraction);
   const float* packHitF0();
 };
+
+const StageAccess Pipeline::Impl::access{"pipeline", {}, {Role::Reflection, Role::Distance, Role::ViewShare}};
 
 // Each pixel's F0 for the trace's hits on glossy pixels: the "f0" image clamped to [0, 1], or
 // Principled's from "base_color" and "metallic", as the glossy-pass form reads them.
@@ -125,18 +130,20 @@ void Pipeline::Impl::plan() {
   committedInputs = inputs.shapes();
   committedViews = views.size();
 
-  setup.plan(buffers, frame, colorChannels, !settings.constantRoughness);
+  resources.beginPlan();
+  setup.plan(resources, buffers, frame, colorChannels, !settings.constantRoughness);
   thickness.plan(buffers, frame);
-  hzb.plan(buffers, frame);
-  colors.plan(buffers, frame);
-  trace.plan(buffers, frame);
+  hzb.plan(resources, buffers, frame);
+  colors.plan(resources, buffers, frame);
+  trace.plan(resources, buffers, frame);
   resolve.plan(buffers, frame);
-  filter.plan(buffers, frame);
+  filter.plan(resources, buffers, frame);
   environmentFill.plan(buffers, frame);
-  buffers.add(outRgba, frame.pixels() * sizeof(cl_float4), CL_MEM_WRITE_ONLY);
-  buffers.add(outDistance, frame.pixels() * sizeof(float), CL_MEM_WRITE_ONLY);
+  resources.plan(access, buffers, Role::Reflection, frame.pixels() * sizeof(cl_float4), CL_MEM_WRITE_ONLY);
+  resources.plan(access, buffers, Role::Distance, frame.pixels() * sizeof(float), CL_MEM_WRITE_ONLY);
   viewStage.plan(buffers, views);
-  buffers.add(outView, viewCount > 0 ? frame.pixels() * sizeof(cl_float2) : 0, CL_MEM_WRITE_ONLY);
+  resources.plan(access, buffers, Role::ViewShare, viewCount > 0 ? frame.pixels() * sizeof(cl_float2) : 0,
+                 CL_MEM_WRITE_ONLY);
   std::string what = "a " + std::to_string(frame.width) + "x" + std::to_string(frame.height) + " frame";
   for (size_t k = 0; k < views.size(); ++k)
     what += (k == 0 ? " with views " : ", ") + ViewStage::name(views[k], static_cast<int>(k)) + " (" +
@@ -147,17 +154,16 @@ void Pipeline::Impl::plan() {
   // Views' cameras are written at bind: with views, every commit binds.
   if (!reconfigure && !reshaped && !reallocated && views.empty()) return;  // the same kernels and buffers, bound
 
-  setup.bind(hzb.hzb, colors.pyramid);
-  thickness.bind(setup);
-  hzb.bind(d.queue);
-  colors.bind(hzb, setup, trace);
-  trace.bind(setup, hzb, colors);
+  setup.bind(resources);
+  thickness.bind(resources);
+  hzb.bind(d.queue, resources);
+  colors.bind(resources);
+  trace.bind(resources);
   // With the filter on, the resolve writes to an intermediate the filter reads.
-  resolve.bind(setup, trace, filter.enabled() ? filter.resolvedRgba : outRgba,
-               filter.enabled() ? filter.resolvedDistance : outDistance, outView);
-  filter.bind(setup, outRgba, outDistance);
-  environmentFill.bind(d.queue, setup, outRgba);
-  viewStage.bind(d.queue, camera, views, setup, trace);
+  resolve.bind(resources, filter.enabled());
+  filter.bind(resources);
+  environmentFill.bind(d.queue, resources);
+  viewStage.bind(d.queue, camera, views, resources);
   if (reflection.width != frame.width || reflection.height != frame.height) {
     reflection = Image(frame.width, frame.height, 4);
     distance = Image(frame.width, frame.height, 1);
@@ -176,15 +182,18 @@ void Pipeline::Impl::report(double fraction) {
 void Pipeline::Impl::run() {
   cl::CommandQueue& q = DeviceAccess::impl(device).queue;
   const TraceSettings& s = settings;
-  const CameraConstants cam(camera);
+  const FrameConstants constants = frameConstants(frame, camera, s);  // every stage's parameters begin with it
   StageEvents events;
+  const cl::Buffer& outRgba = resources.write(access, Role::Reflection);
+  const cl::Buffer& outDistance = resources.write(access, Role::Distance);
+  const cl::Buffer& outView = resources.write(access, Role::ViewShare);
 
   const bool roughnessImage = !s.constantRoughness;
   stage = "setup";
   setup.enqueue(q,
                 {inputs.pixels("color"), inputs.pixels("depth"), inputs.pixels("normal"),
                  roughnessImage ? inputs.pixels("roughness") : nullptr},
-                SetupStage::params(frame, cam, s, colorChannels), events);
+                SetupStage::params(constants, s, colorChannels), events);
   trace.upload(q, hasBase ? inputs.pixels("base") : nullptr, hasBase ? inputs.pixels("specular") : nullptr,
                hasBase && hasMaterials ? packHitF0() : nullptr, events);
   stage = "hzb";
@@ -192,7 +201,7 @@ void Pipeline::Impl::run() {
   stage = "color_mips";
   colors.enqueue(q, events);
   stage = "thickness";
-  thickness.enqueue(q, s, events);
+  thickness.enqueue(q, constants, s, events);
   stage = "views";
   viewStage.prepare(q, views, s, events);
   if (!views.empty()) viewStage.limitRadiance(inputs.pixels("color"), frame.pixels(), colorChannels);
@@ -201,8 +210,8 @@ void Pipeline::Impl::run() {
   const int tiles = counts.listedTiles, batch = trace.batchSize();
   report(0.1);
 
-  TraceParams traceParams = TraceStage::params(frame, cam, s, hasBase);
-  ResolveParams resolveParams = ResolveStage::params(frame, cam, s, static_cast<int>(views.size()));
+  TraceParams traceParams = TraceStage::params(constants, frame, s, hasBase);
+  ResolveParams resolveParams = ResolveStage::params(constants, s, static_cast<int>(views.size()));
   traceParams.listed = counts.listedPixels;
   traceParams.batch_size = resolveParams.batch_size = batch;
   for (int first = 0; tiles > 0 && first < s.samplesPerPixel; first += batch) {
@@ -234,9 +243,9 @@ void Pipeline::Impl::run() {
   }
   if (tiles > 0) resolve.finalize(q, resolveParams, tiles, events);
   stage = "filter";
-  filter.enqueue(q, s, tiles, events);
+  filter.enqueue(q, constants, tiles, events);
   stage = "environment";
-  environmentFill.enqueue(q, camera.view, s, events);
+  environmentFill.enqueue(q, constants, camera.view, s, events);
   stage = "download";
   q.enqueueReadBuffer(outRgba, CL_FALSE, 0, frame.pixels() * sizeof(cl_float4), reflection.data.data(), nullptr,
                       newEvent(events, "download"));

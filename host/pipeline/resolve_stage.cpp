@@ -4,6 +4,12 @@ namespace ssrcl::detail {
 
 cl::NDRange listedTiles(int tiles) { return cl::NDRange(size_t(tiles) * SSRCL_TILE, SSRCL_TILE); }
 
+const StageAccess ResolveStage::access{"resolve",
+                                       {Role::TileList, Role::Positions, Role::Normals, Role::PixelRays, Role::RayHits,
+                                        Role::RayRadiance, Role::RayStates},
+                                       {Role::ResolvedRgba, Role::ResolvedDistance, Role::Reflection, Role::Distance,
+                                        Role::ViewShare}};
+
 void ResolveStage::configure(Device::Impl& device, const TraceSettings& s, int views) {
   views_ = views;
   std::vector<std::string> defines = {roughnessMappingDefine(s.roughnessMapping),
@@ -21,25 +27,22 @@ void ResolveStage::plan(DeviceBuffers& buffers, const FrameShape& frame) {
   buffers.add(sources_, views_ > 0 ? frame.pixels() * (views_ + 1) * sizeof(float) : 0);
 }
 
-void ResolveStage::bind(const SetupStage& setup, const TraceStage& trace, const cl::Buffer& rgba,
-                        const cl::Buffer& distance, const cl::Buffer& view) {
+void ResolveStage::bind(const FrameResources& resources, bool filtered) {
+  auto in = [&](Role role) { return resources.read(access, role); };
+  auto out = [&](Role role) { return resources.write(access, role); };
   bindArgs(accumulate_, 1,
            "tile_list, positions, normals, pixel_rays, ray_hit, ray_radiance, acc_radiance, acc_weight, ray_state, "
            "acc_sources",
-           setup.tileList, setup.positions, setup.normals, setup.pixelRays, trace.rayHit,
-           trace.rayRadiance, radiance_, weight_, trace.rayState, sources_);
+           in(Role::TileList), in(Role::Positions), in(Role::Normals), in(Role::PixelRays), in(Role::RayHits),
+           in(Role::RayRadiance), radiance_, weight_, in(Role::RayStates), sources_);
   bindArgs(finalize_, 1, "tile_list, acc_radiance, acc_weight, out_rgba, out_distance, acc_sources, out_view",
-           setup.tileList, radiance_, weight_, rgba, distance, sources_, view);
+           in(Role::TileList), radiance_, weight_, out(filtered ? Role::ResolvedRgba : Role::Reflection),
+           out(filtered ? Role::ResolvedDistance : Role::Distance), sources_, out(Role::ViewShare));
 }
 
-ResolveParams ResolveStage::params(const FrameShape& frame, const CameraConstants& camera, const TraceSettings& s,
-                                   int views) {
+ResolveParams ResolveStage::params(const FrameConstants& frame, const TraceSettings& s, int views) {
   ResolveParams p{};
-  std::copy(std::begin(camera.invProj), std::end(camera.invProj), p.inv_proj);
-  p.width = frame.width;
-  p.height = frame.height;
-  p.tiles_x = frame.tilesX;
-  p.mirror_roughness = s.mirrorRoughness;
+  p.frame = frame;
   p.reuse_radius = s.reuseRadius;
   p.view_count = views;
   return p;  // batch_size and first_sample are per batch

@@ -2,21 +2,21 @@
 // The resolve (kernels/resolve.cl): each reflecting pixel's estimate from its own and its
 // neighbours' rays (ratio estimator, Stachowiak), accumulated over the trace's batches, then
 // normalised into the reflection and distance passes, on the listed tiles.
-#include "trace_stage.hpp"
+#include "frame_resources.hpp"
 
 namespace ssrcl::detail {
 
 class ResolveStage {
  public:
   // With views > 0 it also sums the found weight per ray source into `view` (kernels/resolve.cl).
+  static const StageAccess access;
+
   void configure(Device::Impl& device, const TraceSettings& s, int views);
   void plan(DeviceBuffers& buffers, const FrameShape& frame);
-  // `rgba` and `distance` receive the result (the outputs, or the filter's input), `view` the
-  // source index and share of views per pixel (with views).
-  void bind(const SetupStage& setup, const TraceStage& trace, const cl::Buffer& rgba, const cl::Buffer& distance,
-            const cl::Buffer& view);
-  static ResolveParams params(const FrameShape& frame, const CameraConstants& camera, const TraceSettings& s,
-                              int views);
+  // The result goes to the outputs, or with `filtered` to the filter's input; with views the
+  // source index and share of views per pixel to the view share.
+  void bind(const FrameResources& resources, bool filtered);
+  static ResolveParams params(const FrameConstants& frame, const TraceSettings& s, int views);
   // Adds the rays of one batch (params.first_sample, params.batch_size) over `tiles` listed tiles.
   void accumulate(cl::CommandQueue& q, const ResolveParams& params, int tiles, StageEvents& events);
   void finalize(cl::CommandQueue& q, const ResolveParams& params, int tiles, StageEvents& events);

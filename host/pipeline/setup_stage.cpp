@@ -2,12 +2,19 @@
 
 namespace ssrcl::detail {
 
+// Level 0 of both pyramids is setup's: the HZB and colour pyramid stages reduce the rest.
+const StageAccess SetupStage::access{"setup",
+                                     {},
+                                     {Role::Positions, Role::Normals, Role::Planes, Role::PixelRays, Role::RayList,
+                                      Role::TileList, Role::DepthPyramid, Role::ColorPyramid}};
+
 void SetupStage::configure(Device::Impl& device) {
   kernel_ = cl::Kernel(
       device.program({"ssrcl_shared.h", "common.cl", "color_lookup.cl", "surface_plane.cl", "setup.cl"}), "setup");
 }
 
-void SetupStage::plan(DeviceBuffers& buffers, const FrameShape& frame, int colorChannels, bool roughnessImage) {
+void SetupStage::plan(FrameResources& resources, DeviceBuffers& buffers, const FrameShape& frame, int colorChannels,
+                      bool roughnessImage) {
   frame_ = frame;
   colorChannels_ = colorChannels;
   const size_t pixels = frame.pixels();
@@ -15,38 +22,33 @@ void SetupStage::plan(DeviceBuffers& buffers, const FrameShape& frame, int color
   buffers.add(depthIn_, pixels * sizeof(float), CL_MEM_READ_ONLY);
   buffers.add(normalIn_, pixels * 3 * sizeof(float), CL_MEM_READ_ONLY);
   buffers.add(roughnessIn_, roughnessImage ? pixels * sizeof(float) : 0, CL_MEM_READ_ONLY);
-  buffers.add(positions, pixels * sizeof(cl_float4));
-  buffers.add(normals, pixels * sizeof(cl_float4));
-  buffers.add(pixelRays, pixels * sizeof(cl_int));
-  buffers.add(rayList, pixels * sizeof(cl_int));
-  buffers.add(tileList, size_t(frame.tilesX) * frame.tilesY * sizeof(cl_int));
-  buffers.add(counts, SSRCL_COUNTERS * sizeof(cl_int));
-  buffers.add(planes, pixels * sizeof(cl_float4));
+  resources.plan(access, buffers, Role::Positions, pixels * sizeof(cl_float4));
+  resources.plan(access, buffers, Role::Normals, pixels * sizeof(cl_float4));
+  resources.plan(access, buffers, Role::PixelRays, pixels * sizeof(cl_int));
+  resources.plan(access, buffers, Role::RayList, pixels * sizeof(cl_int));
+  resources.plan(access, buffers, Role::TileList, size_t(frame.tilesX) * frame.tilesY * sizeof(cl_int));
+  buffers.add(counts_, SSRCL_COUNTERS * sizeof(cl_int));
+  resources.plan(access, buffers, Role::Planes, pixels * sizeof(cl_float4));
 }
 
-void SetupStage::bind(const cl::Buffer& hzb, const cl::Buffer& colorPyramid) {
+void SetupStage::bind(const FrameResources& resources) {
   // Argument 0 is the parameter block, set at each enqueue. HZB and colour level 0 start at
   // offset 0 of their buffers.
+  auto out = [&](Role role) { return resources.write(access, role); };
   bindArgs(kernel_, 1,
            "color_in, depth_in, normal_in, roughness_in, position_out, hzb_out, normal_out, color_out, pixel_rays, "
            "ray_list, tile_list, ray_count, plane_out",
-           colorIn_, depthIn_, normalIn_, roughnessIn_, positions, hzb, normals, colorPyramid, pixelRays,
-           rayList, tileList, counts, planes);
+           colorIn_, depthIn_, normalIn_, roughnessIn_, out(Role::Positions), out(Role::DepthPyramid),
+           out(Role::Normals), out(Role::ColorPyramid), out(Role::PixelRays), out(Role::RayList), out(Role::TileList),
+           counts_, out(Role::Planes));
 }
 
-SetupParams SetupStage::params(const FrameShape& frame, const CameraConstants& camera, const TraceSettings& s,
-                               int colorChannels) {
+SetupParams SetupStage::params(const FrameConstants& frame, const TraceSettings& s, int colorChannels) {
   SetupParams p{};
-  std::copy(std::begin(camera.normalMatrix), std::end(camera.normalMatrix), p.normal_matrix);
-  std::copy(std::begin(camera.invProj), std::end(camera.invProj), p.inv_proj);
-  p.width = frame.width;
-  p.height = frame.height;
-  p.near_plane = camera.nearPlane;
-  p.far_plane = camera.farPlane;
+  p.frame = frame;
   p.color_channels = colorChannels;
   p.constant_roughness = s.constantRoughness.value_or(-1.0f);  // the kernel's "unset"
   p.max_roughness = s.maxRoughness;
-  p.mirror_roughness = s.mirrorRoughness;
   p.samples_per_pixel = s.samplesPerPixel;
   p.full_rays_roughness = s.fullRaysRoughness;
   p.trace_stride = s.traceStride;
@@ -64,7 +66,7 @@ void SetupStage::enqueue(cl::CommandQueue& q, const Inputs& in, const SetupParam
                        newEvent(events, "upload"));
   q.enqueueWriteBuffer(normalIn_, CL_FALSE, 0, pixels * 3 * sizeof(float), in.normal, nullptr,
                        newEvent(events, "upload"));
-  q.enqueueFillBuffer(counts, cl_int(0), 0, SSRCL_COUNTERS * sizeof(cl_int), nullptr, newEvent(events, "upload"));
+  q.enqueueFillBuffer(counts_, cl_int(0), 0, SSRCL_COUNTERS * sizeof(cl_int), nullptr, newEvent(events, "upload"));
   if (in.roughness)
     q.enqueueWriteBuffer(roughnessIn_, CL_FALSE, 0, pixels * sizeof(float), in.roughness, nullptr,
                          newEvent(events, "upload"));
@@ -75,7 +77,7 @@ void SetupStage::enqueue(cl::CommandQueue& q, const Inputs& in, const SetupParam
 
 SetupStage::Counts SetupStage::readCounts(cl::CommandQueue& q) {
   cl_int c[SSRCL_COUNTERS] = {};
-  q.enqueueReadBuffer(counts, CL_TRUE, 0, sizeof(c), c);
+  q.enqueueReadBuffer(counts_, CL_TRUE, 0, sizeof(c), c);
   return {c[SSRCL_COUNT_LISTED], c[SSRCL_COUNT_RAYS], c[SSRCL_COUNT_TILES], c[SSRCL_COUNT_TRACED]};
 }
 

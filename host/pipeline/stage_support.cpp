@@ -23,13 +23,19 @@ FrameShape::FrameShape(int w, int h)
 
 cl::NDRange FrameShape::tiled2d() const { return cl::NDRange(roundUp(width, SSRCL_TILE), roundUp(height, SSRCL_TILE)); }
 
-CameraConstants::CameraConstants(const Camera& camera) {
-  toRowMajor(camera.projection, proj);
-  toRowMajor(glm::inverse(camera.projection), invProj);
+FrameConstants frameConstants(const FrameShape& frame, const Camera& camera, const TraceSettings& s) {
+  FrameConstants c{};
+  toRowMajor(camera.projection, c.proj);
+  toRowMajor(glm::inverse(camera.projection), c.inv_proj);
   // Normals go to view space with the inverse transpose, which stays right for scaled views.
-  toRowMajor(glm::dmat4(glm::inverseTranspose(glm::dmat3(camera.view))), normalMatrix);
-  nearPlane = static_cast<float>(camera.nearPlane);
-  farPlane = static_cast<float>(std::min(camera.farPlane, double(std::numeric_limits<float>::max())));
+  toRowMajor(glm::dmat4(glm::inverseTranspose(glm::dmat3(camera.view))), c.normal_matrix);
+  c.width = frame.width;
+  c.height = frame.height;
+  c.tiles_x = frame.tilesX;
+  c.near_plane = static_cast<float>(camera.nearPlane);
+  c.far_plane = static_cast<float>(std::min(camera.farPlane, double(std::numeric_limits<float>::max())));
+  c.mirror_roughness = s.mirrorRoughness;
+  return c;
 }
 
 void DeviceBuffers::add(cl::Buffer& buffer, size_t bytes, cl_mem_flags flags) {

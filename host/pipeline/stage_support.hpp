@@ -14,6 +14,7 @@ namespace ssrcl::detail {
 
 using shared::EnvironmentParams;
 using shared::FilterParams;
+using shared::FrameConstants;
 using shared::HzbLevel;
 using shared::ResolveParams;
 using shared::SetupParams;
@@ -33,12 +34,9 @@ struct FrameShape {
   cl::NDRange tiled2d() const;  // the frame in 2D SSRCL_TILE work-groups
 };
 
-// The camera as the kernels take it: row-major float matrices, clip planes as floats.
-struct CameraConstants {
-  float proj[16], invProj[16], normalMatrix[16];
-  float nearPlane, farPlane;
-  explicit CameraConstants(const Camera& camera);
-};
+// The block every stage's parameters begin with (kernels/ssrcl_shared.h): the camera as the
+// kernels take it (row-major float matrices, clip planes as floats), the frame's size and tiles.
+FrameConstants frameConstants(const FrameShape& frame, const Camera& camera, const TraceSettings& s);
 
 // Device buffers planned by every stage before any is allocated: a frame the device cannot hold
 // fails with the sizes named (checkDeviceMemory), not with an OpenCL status from whichever buffer

@@ -46,6 +46,11 @@ const std::vector<cl_float2>& albedoTable() {
 
 }  // namespace
 
+const StageAccess TraceStage::access{"trace",
+                                     {Role::DepthPyramid, Role::PyramidLevels, Role::Positions, Role::Normals,
+                                      Role::RayList, Role::PixelRays, Role::Planes, Role::ColorPyramid},
+                                     {Role::RayHits, Role::RayRadiance, Role::RayStates}};
+
 void TraceStage::configure(Device::Impl& device, const TraceSettings& s, bool hasBase, bool materials, bool views) {
   hasBase_ = hasBase;
   materials_ = hasBase && materials;
@@ -62,14 +67,14 @@ void TraceStage::configure(Device::Impl& device, const TraceSettings& s, bool ha
   batch_ = s.samplesPerPixel;
 }
 
-void TraceStage::plan(DeviceBuffers& buffers, const FrameShape& frame) {
+void TraceStage::plan(FrameResources& resources, DeviceBuffers& buffers, const FrameShape& frame) {
   frame_ = frame;
   const size_t pixels = frame.pixels();
   const size_t perSample = pixels * sizeof(cl_float4);  // of each of the two record buffers
   batch_ = std::min(batch_, static_cast<int>(std::max<size_t>(1, kRayRecordBudget / (2 * perSample))));
-  buffers.add(rayHit, perSample * batch_);
-  buffers.add(rayRadiance, perSample * batch_);
-  buffers.add(rayState, views_ ? pixels * batch_ : 0);
+  resources.plan(access, buffers, Role::RayHits, perSample * batch_);
+  resources.plan(access, buffers, Role::RayRadiance, perSample * batch_);
+  resources.plan(access, buffers, Role::RayStates, views_ ? pixels * batch_ : 0);
   buffers.add(baseIn_, hasBase_ ? pixels * 3 * sizeof(float) : 0, CL_MEM_READ_ONLY);
   buffers.add(specularIn_, hasBase_ ? pixels * 3 * sizeof(float) : 0, CL_MEM_READ_ONLY);
   buffers.add(f0In_, materials_ ? pixels * 3 * sizeof(float) : 0, CL_MEM_READ_ONLY);
@@ -77,27 +82,23 @@ void TraceStage::plan(DeviceBuffers& buffers, const FrameShape& frame) {
   buffers.add(workCounters_, counting_ ? (SSRCL_FETCH_SLOTS + SSRCL_HISTOGRAM_BINS) * sizeof(cl_int) : 0);
 }
 
-void TraceStage::bind(const SetupStage& setup, const HzbStage& hzb, const ColorPyramidStage& colors) {
+void TraceStage::bind(const FrameResources& resources) {
+  auto in = [&](Role role) { return resources.read(access, role); };
+  auto out = [&](Role role) { return resources.write(access, role); };
   bindArgs(kernel_, 1,
            "hzb, levels, positions, normals, ray_list, pixel_rays, planes, work_counters, color_pyramid, base, "
            "specular, f0, albedo, ray_hit, ray_radiance, ray_state",
-           hzb.hzb, hzb.levels, setup.positions, setup.normals, setup.rayList, setup.pixelRays,
-           setup.planes, workCounters_, colors.pyramid, baseIn_, specularIn_, f0In_, albedoTable_, rayHit, rayRadiance,
-           rayState);
+           in(Role::DepthPyramid), in(Role::PyramidLevels), in(Role::Positions), in(Role::Normals), in(Role::RayList),
+           in(Role::PixelRays), in(Role::Planes), workCounters_, in(Role::ColorPyramid), baseIn_, specularIn_, f0In_,
+           albedoTable_, out(Role::RayHits), out(Role::RayRadiance), out(Role::RayStates));
 }
 
-TraceParams TraceStage::params(const FrameShape& frame, const CameraConstants& camera, const TraceSettings& s,
+TraceParams TraceStage::params(const FrameConstants& constants, const FrameShape& frame, const TraceSettings& s,
                                bool hasBase) {
   TraceParams p{};
-  std::copy(std::begin(camera.proj), std::end(camera.proj), p.proj);
-  std::copy(std::begin(camera.invProj), std::end(camera.invProj), p.inv_proj);
-  p.width = frame.width;
-  p.height = frame.height;
-  p.near_plane = camera.nearPlane;
-  p.far_plane = camera.farPlane;
+  p.frame = constants;
   p.level_count = static_cast<shared::ssrcl_int>(frame.levels.size());
   p.seed = s.seed;
-  p.mirror_roughness = s.mirrorRoughness;
   // Each ray's cone covers its share of the lobe among all N rays the resolve combines: a
   // reflected GGX lobe spans about 2 alpha, so a share is a cone of half-angle 2 alpha / sqrt(N).
   p.cone_scale = s.prefilter ? 2.0f / std::sqrt(float(resolvedRays(s))) : 0.0f;

@@ -1,12 +1,11 @@
 #pragma once
 // Ray generation and tracing (kernels/trace.cl): rays for the listed pixels, traced through the
-// depth buffer by the tracer the settings name (a program variant), shaded at their hits. Owns the
-// ray records the resolve reads, the optional base/specular passes and the counting mode's
+// depth buffer by the tracer the settings name (a program variant), shaded at their hits. Plans the
+// ray records the resolve reads, and owns the optional base/specular passes and the counting mode's
 // counters, and with material passes each pixel's F0 and the table of the specular lobe's albedo
 // E that shades hits on glossy pixels. Samples are traced in batches when all of them would not
 // fit the record budget.
-#include "color_pyramid_stage.hpp"
-#include "setup_stage.hpp"
+#include "frame_resources.hpp"
 
 namespace ssrcl::detail {
 
@@ -17,9 +16,11 @@ class TraceStage {
  public:
   // With views, the trace also writes each ray's state (rayState) for the view stage. With
   // `materials` (and base): hits on glossy pixels are shaded with their F0 (kernels/trace.cl).
+  static const StageAccess access;
+
   void configure(Device::Impl& device, const TraceSettings& s, bool hasBase, bool materials, bool views);
-  void plan(DeviceBuffers& buffers, const FrameShape& frame);
-  void bind(const SetupStage& setup, const HzbStage& hzb, const ColorPyramidStage& colors);
+  void plan(FrameResources& resources, DeviceBuffers& buffers, const FrameShape& frame);
+  void bind(const FrameResources& resources);
   // Uploads base and specular, and F0 with materials (packed floats, when set; F0 in [0, 1]), and
   // clears the counters (counting mode).
   void upload(cl::CommandQueue& q, const float* base, const float* specular, const float* f0, StageEvents& events);
@@ -27,12 +28,10 @@ class TraceStage {
   void enqueue(cl::CommandQueue& q, const TraceParams& params, StageEvents& events);
   // Counting mode: texel reads and the iteration histogram into `times` (waits for the queue).
   void readWork(cl::CommandQueue& q, StageTimes& times);
-  static TraceParams params(const FrameShape& frame, const CameraConstants& camera, const TraceSettings& s,
+  static TraceParams params(const FrameConstants& constants, const FrameShape& frame, const TraceSettings& s,
                             bool hasBase);
 
   int batchSize() const { return batch_; }  // samples per pixel in the ray records
-  cl::Buffer rayHit, rayRadiance;            // per (pixel, batch slot); see kernels/trace.cl
-  cl::Buffer rayState;                       // per (pixel, batch slot), with views (SSRCL_RAY_*)
 
  private:
   bool hasBase_ = false, materials_ = false, counting_ = false, views_ = false;

@@ -18,6 +18,14 @@ TraceSettings viewSettings(const ViewSource& view, const TraceSettings& s) {
 
 }  // namespace
 
+const StageAccess ViewStage::access{"views",
+                                    {Role::Positions, Role::Normals, Role::RayList, Role::PixelRays},
+                                    {Role::RayHits, Role::RayRadiance, Role::RayStates}};
+const StageAccess ViewStage::viewAccess{"views (in a view)",
+                                        {Role::DepthPyramid, Role::PyramidLevels, Role::Positions, Role::Normals,
+                                         Role::Planes, Role::ColorPyramid},
+                                        {}};
+
 std::string ViewStage::name(const ViewSource& view, int index) {
   return view.label.empty() ? "view " + std::to_string(index + 1) : view.label;
 }
@@ -55,47 +63,47 @@ void ViewStage::plan(DeviceBuffers& buffers, const std::vector<ViewSource>& view
     const Camera& c = views[k].camera;
     u.frame = FrameShape(c.width, c.height);
     colorChannels_.push_back(views[k].inputs.view("color").channels);
-    u.setup.plan(buffers, u.frame, colorChannels_.back(), views[k].inputs.has("roughness"));
+    u.resources.beginPlan();
+    u.setup.plan(u.resources, buffers, u.frame, colorChannels_.back(), views[k].inputs.has("roughness"));
     u.thickness.plan(buffers, u.frame);
-    u.hzb.plan(buffers, u.frame);
-    u.colors.plan(buffers, u.frame);
+    u.hzb.plan(u.resources, buffers, u.frame);
+    u.colors.plan(u.resources, buffers, u.frame);
   }
   buffers.add(cameras_, units_.size() * sizeof(ViewCamera), CL_MEM_READ_ONLY);
 }
 
 void ViewStage::bind(cl::CommandQueue& q, const Camera& main, const std::vector<ViewSource>& views,
-                     const SetupStage& setup, const TraceStage& trace) {
-  const CameraConstants mainConstants(main);
-  std::copy(std::begin(mainConstants.invProj), std::end(mainConstants.invProj), invProj_);
-  std::copy(std::begin(mainConstants.proj), std::end(mainConstants.proj), proj_);
-  width_ = main.width;
-  height_ = main.height;
+                     const FrameResources& resources) {
+  auto in = [&](Role role) { return resources.read(access, role); };
+  auto out = [&](Role role) { return resources.write(access, role); };
   std::vector<ViewCamera> cameras(units_.size());
   const glm::dmat4 mainToWorld = glm::inverse(main.view);
   for (size_t k = 0; k < units_.size(); ++k) {
     Unit& u = *units_[k];
     const Camera& c = views[k].camera;
-    const CameraConstants constants(c);
+    const FrameConstants constants = frameConstants(u.frame, c, TraceSettings());
     const glm::dmat4 fromMain = c.view * mainToWorld;
     toRowMajor(fromMain, cameras[k].from_main);
     toRowMajor(glm::inverse(fromMain), cameras[k].to_main);
     std::copy(std::begin(constants.proj), std::end(constants.proj), cameras[k].proj);
     cameras[k].width = c.width;
     cameras[k].height = c.height;
-    cameras[k].near_plane = constants.nearPlane;
-    cameras[k].far_plane = constants.farPlane;
+    cameras[k].near_plane = constants.near_plane;
+    cameras[k].far_plane = constants.far_plane;
     cameras[k].other_time = views[k].otherTime;
 
-    u.setup.bind(u.hzb.hzb, u.colors.pyramid);
-    u.thickness.bind(u.setup);
-    u.hzb.bind(q);
-    u.colors.bind(u.hzb);
+    u.setup.bind(u.resources);
+    u.thickness.bind(u.resources);
+    u.hzb.bind(q, u.resources);
+    u.colors.bind(u.resources);
+    auto view = [&](Role role) { return u.resources.read(viewAccess, role); };
     bindArgs(u.kernel, 1,
              "views, main_positions, main_normals, ray_list, pixel_rays, hzb, levels, positions, normals, planes, "
              "color_pyramid, ray_hit, ray_radiance, ray_state",
-             cameras_, setup.positions, setup.normals, setup.rayList, setup.pixelRays, u.hzb.hzb,
-             u.hzb.levels, u.setup.positions, u.setup.normals, u.setup.planes, u.colors.pyramid, trace.rayHit,
-             trace.rayRadiance, trace.rayState);
+             cameras_, in(Role::Positions), in(Role::Normals), in(Role::RayList), in(Role::PixelRays),
+             view(Role::DepthPyramid), view(Role::PyramidLevels), view(Role::Positions), view(Role::Normals),
+             view(Role::Planes), view(Role::ColorPyramid), out(Role::RayHits), out(Role::RayRadiance),
+             out(Role::RayStates));
   }
   if (!cameras.empty())
     q.enqueueWriteBuffer(cameras_, CL_TRUE, 0, cameras.size() * sizeof(ViewCamera), cameras.data());
@@ -108,13 +116,14 @@ void ViewStage::prepare(cl::CommandQueue& q, std::vector<ViewSource>& views, con
     Unit& u = *units_[k];
     PipelineInputs& in = views[k].inputs;
     const TraceSettings vs = viewSettings(views[k], s);
+    const FrameConstants constants = frameConstants(u.frame, views[k].camera, vs);
     u.setup.enqueue(q,
                     {in.pixels("color"), in.pixels("depth"), in.pixels("normal"),
                      in.has("roughness") ? in.pixels("roughness") : nullptr},
-                    SetupStage::params(u.frame, CameraConstants(views[k].camera), vs, colorChannels_[k]), events);
+                    SetupStage::params(constants, vs, colorChannels_[k]), events);
     u.hzb.enqueue(q, events);
     u.colors.reduce(q, events);
-    u.thickness.enqueue(q, vs, events);
+    u.thickness.enqueue(q, constants, vs, events);
     views[k].prepared = true;
   }
 }
@@ -138,16 +147,12 @@ void ViewStage::limitRadiance(const float* color, size_t pixels, int channels) {
 
 void ViewStage::trace(cl::CommandQueue& q, const TraceParams& batch, StageEvents& events) {
   ViewTraceParams p{};
-  std::copy(std::begin(invProj_), std::end(invProj_), p.inv_proj);
-  std::copy(std::begin(proj_), std::end(proj_), p.proj);
-  p.width = width_;
-  p.height = height_;
+  p.frame = batch.frame;
   p.listed = batch.listed;
   p.batch_size = batch.batch_size;
   p.first_sample = batch.first_sample;
   p.view_count = static_cast<cl_int>(units_.size());
   p.max_iterations = batch.max_iterations;
-  p.mirror_roughness = batch.mirror_roughness;
   p.cone_scale = batch.cone_scale;
   p.linear_step = batch.linear_step;
   p.edge_fade = batch.edge_fade;

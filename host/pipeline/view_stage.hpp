@@ -6,6 +6,7 @@
 
 #include "color_pyramid_stage.hpp"
 #include "pipeline_inputs.hpp"
+#include "setup_stage.hpp"
 #include "thickness_stage.hpp"
 #include "trace_stage.hpp"
 
@@ -27,11 +28,15 @@ class ViewStage {
   // Throws Error naming the view when its camera or images cannot be used.
   static void validate(const ViewSource& view, int index, const TraceSettings& s);
   static std::string name(const ViewSource& view, int index);
+  // The trace in the views reads the main frame's pixels and rays and continues its rays ...
+  static const StageAccess access;
+  // ... in each view's own frame.
+  static const StageAccess viewAccess;
 
   void configure(Device::Impl& device, const TraceSettings& s, size_t viewCount);
   void plan(DeviceBuffers& buffers, const std::vector<ViewSource>& views);
-  void bind(cl::CommandQueue& q, const Camera& main, const std::vector<ViewSource>& views, const SetupStage& setup,
-            const TraceStage& trace);
+  void bind(cl::CommandQueue& q, const Camera& main, const std::vector<ViewSource>& views,
+            const FrameResources& resources);
   // The setup, HZB, colour pyramid and thickness of each view not yet prepared.
   void prepare(cl::CommandQueue& q, std::vector<ViewSource>& views, const TraceSettings& s, StageEvents& events);
   // The unresolved rays of one trace batch, in their views ("views" events).
@@ -46,6 +51,7 @@ class ViewStage {
  private:
   struct Unit {
     FrameShape frame;
+    FrameResources resources;  // the view's own frame
     SetupStage setup;
     ThicknessStage thickness;
     HzbStage hzb;
@@ -56,9 +62,7 @@ class ViewStage {
   cl::Program program_;
   cl::Buffer cameras_;  // ViewCamera per view
   std::vector<int> colorChannels_;
-  float invProj_[16] = {}, proj_[16] = {};  // the main camera's
   float radianceLimit_ = 0.0f;
-  int width_ = 0, height_ = 0;
 };
 
 }  // namespace ssrcl::detail
