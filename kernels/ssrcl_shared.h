@@ -50,6 +50,9 @@ typedef uint ssrcl_uint;
 // 1 inclusive. Square roots put the nodes where E bends: smooth lobes and grazing angles.
 #define SSRCL_ALBEDO_STEPS 32
 
+// Rays a trace_rays work-item traces together, one per float8 lane (kernels/trace.cl).
+#define SSRCL_TRACE_LANES 8
+
 // One level of the HZB and colour pyramids: offset into the packed mip buffer and its size.
 typedef struct {
   ssrcl_int offset;

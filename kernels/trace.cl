@@ -164,6 +164,168 @@ inline float trace_hiz(TraceScene* sc, const ScreenRay* ray, float3 dir, int2* h
   return -1.0f;
 }
 
+// trace_hiz for SSRCL_TRACE_LANES (8) rays at once, one per float8 lane. PoCL runs each
+// work-item's loop as scalar code (its loop exits per ray, so its vectoriser cannot run it across
+// work-items); lanes bring the vector units in by hand. Each lane evaluates trace_hiz's and
+// hit_pixel's expressions in the same form and order, so it rounds as the scalar code does and
+// finds the same hits. A lane's finished ray idles until all eight are done.
+typedef struct {
+  float8 s0x, s0y, dsx, dsy, q0x, q0y, q0z, q0w, dqx, dqy, dqz, dqw;
+} ScreenRays8;
+
+// The k-th of eight values `stride` apart (a field of eight private structs).
+inline float8 lanes_of(const float* a, int stride) {
+  return (float8)(a[0], a[stride], a[2 * stride], a[3 * stride], a[4 * stride], a[5 * stride], a[6 * stride],
+                  a[7 * stride]);
+}
+
+inline float8 gather8(__global const float* a, int8 i) {
+  return (float8)(a[i.s0], a[i.s1], a[i.s2], a[i.s3], a[i.s4], a[i.s5], a[i.s6], a[i.s7]);
+}
+
+inline int8 gather8i(__global const int* a, int8 i) {
+  return (int8)(a[i.s0], a[i.s1], a[i.s2], a[i.s3], a[i.s4], a[i.s5], a[i.s6], a[i.s7]);
+}
+
+// cell_exit per lane.
+inline float8 cell_exit8(const ScreenRays8* r, float8 t, float8 nudge, float8 cell_size, int8* cx, int8* cy) {
+  float8 ta = t + nudge;
+  float8 fx = floor((r->s0x + ta * r->dsx) / cell_size), fy = floor((r->s0y + ta * r->dsy) / cell_size);
+  *cx = convert_int8(fx);
+  *cy = convert_int8(fy);
+  // The boundary in its own statement: folded into the subtraction it would round once (an FMA).
+  float8 bx = (fx + select((float8)(0.0f), (float8)(1.0f), isgreater(r->dsx, 0.0f))) * cell_size;
+  float8 by = (fy + select((float8)(0.0f), (float8)(1.0f), isgreater(r->dsy, 0.0f))) * cell_size;
+  float8 tx = (bx - r->s0x) / r->dsx, ty = (by - r->s0y) / r->dsy;
+  tx = select(tx, (float8)(INFINITY), isless(fabs(r->dsx), 1e-12f));
+  ty = select(ty, (float8)(INFINITY), isless(fabs(r->dsy), 1e-12f));
+  return fmin(tx, ty);
+}
+
+// dot(float3) as PoCL computes it: three rounded products, z + (x + y); no FMA (the products are
+// statements of their own).
+inline float8 dot8(float8 ax, float8 ay, float8 az, float8 bx, float8 by, float8 bz) {
+  float8 x = ax * bx, y = ay * by, z = az * bz;
+  return z + (x + y);
+}
+
+// plane_side per lane.
+inline float8 plane_side8(const ScreenRays8* r, float8 t, float8 px, float8 py, float8 pz, float8 pw) {
+  float8 qx = r->q0x + t * r->dqx, qy = r->q0y + t * r->dqy, qz = r->q0z + t * r->dqz, qw = r->q0w + t * r->dqw;
+  return dot8(qx, qy, qz, px, py, pz) - qw * pw;
+}
+
+// hit_pixel per lane, for the lanes in `lanes` (the others' results are not used).
+inline float8 hit_pixel8(const TraceScene* sc, const ScreenRays8* r, float8 dx, float8 dy, float8 dz, int8 cx,
+                         int8 cy, float8 t_in, float8 t_out, int8 lanes, int8* in_front, int8* seen, int8* behind,
+                         int8* thick) {
+  int8 q = 4 * (clamp(cy, 0, sc->size.y - 1) * sc->size.x + clamp(cx, 0, sc->size.x - 1));
+  __global const float* planes = (__global const float*)sc->planes;
+  float8 px = gather8(planes, q), py = gather8(planes, q + 1), pz = gather8(planes, q + 2),
+         pw = gather8(planes, q + 3);
+  int8 sky = pw == -INFINITY;  // SSRCL_NO_PLANE
+  float8 g_in = plane_side8(r, t_in, px, py, pz, pw), g_out = plane_side8(r, t_out, px, py, pz, pw);
+  *in_front = sky | (g_out > 0.0f);
+  int8 facing = ~sky & (dot8(px, py, pz, dx, dy, dz) < 0.0f);
+  int8 crossing = facing & (g_in > 0.0f) & (g_out <= 0.0f);
+  int8 within = facing & ~crossing & (g_in <= 0.0f) & (-g_in <= r->q0w + t_in * r->dqw);
+  int8 passed = lanes & facing & ~crossing & ~within;
+  *behind |= passed & ~*in_front & *seen;
+  *seen |= (lanes & sky) | (passed & *in_front);
+  *thick |= lanes & within;
+  float8 t_hit = select((float8)(-1.0f), t_in, within);
+  return select(t_hit, t_in + (t_out - t_in) * (g_in / (g_in - g_out)), crossing);
+}
+
+// Traces the rays of the lanes marked in live[] (others are left alone): t_hit[k] is the hit's t or
+// -1, hit_cell[k] the pixel hit, and sc[k] counts the lane's work and its views flags.
+inline void trace_hiz_lanes(TraceScene* sc, const ScreenRay* rays, const float3* dirs, const int* live,
+                            float* t_hit_out, int2* hit_cell) {
+  // ScreenRay is 12 floats (s0, ds, q0, dq; the float4s 16-byte aligned), a float3 4.
+  const float* rf = (const float*)rays;
+  const int rs = sizeof(ScreenRay) / sizeof(float), ds = sizeof(float3) / sizeof(float);
+  const ScreenRays8 r = {lanes_of(rf, rs), lanes_of(rf + 1, rs), lanes_of(rf + 2, rs), lanes_of(rf + 3, rs),
+                         lanes_of(rf + 4, rs), lanes_of(rf + 5, rs), lanes_of(rf + 6, rs), lanes_of(rf + 7, rs),
+                         lanes_of(rf + 8, rs), lanes_of(rf + 9, rs), lanes_of(rf + 10, rs), lanes_of(rf + 11, rs)};
+  const float* df = (const float*)dirs;
+  const float8 dx = lanes_of(df, ds), dy = lanes_of(df + 1, ds), dz = lanes_of(df + 2, ds);
+  int lane_iterations[8], lane_seen[8];
+  for (int k = 0; k < 8; ++k) {
+    lane_iterations[k] = sc[k].iterations;
+    lane_seen[k] = sc[k].seen;
+  }
+  int8 iterations = vload8(0, lane_iterations), fetches = 0;
+  int8 seen = vload8(0, lane_seen) != 0, behind = 0, thick = 0;
+  const int top = sc->level_count - 1;
+  __global const int* levels = (__global const int*)sc->levels;  // HzbLevel: offset, width, height, pad
+
+  float8 nudge = 0.01f / fmax(fabs(r.dsx), fabs(r.dsy));
+  int8 deeper = r.q0z * r.dqw - r.dqz * r.q0w > 0.0f;
+  int8 cx, cy;
+  float8 t = cell_exit8(&r, (float8)(0.0f), nudge, (float8)(1.0f), &cx, &cy);
+  int8 mip = 0, hit_x = 0, hit_y = 0;
+  float8 t_hit = -1.0f;
+  int8 active = vload8(0, live) != 0;
+  for (;;) {
+    active &= (iterations < sc->max_iterations) & (t <= 1.0f);
+    if (!any(active)) break;
+    float8 t_exit = cell_exit8(&r, t, nudge, convert_float8((int8)(1) << mip), &cx, &cy);
+    int8 fine = active & (mip == 0);
+    int8 in_front;
+    float8 t_pixel = hit_pixel8(sc, &r, dx, dy, dz, cx, cy, t, fmin(t_exit, 1.0f), fine, &in_front, &seen, &behind,
+                                &thick);
+    int8 hit = fine & (t_pixel >= 0.0f);
+    t_hit = select(t_hit, t_pixel, hit);
+    hit_x = select(hit_x, cx, hit);
+    hit_y = select(hit_y, cy, hit);
+
+    int8 l4 = 4 * mip;
+    int8 l_width = gather8i(levels, l4 + 1);
+    int8 texel = gather8i(levels, l4) + clamp(cy, 0, gather8i(levels, l4 + 2) - 1) * l_width +
+                 clamp(cx, 0, l_width - 1);
+    float8 d_min = gather8(sc->hzb, texel);
+    int8 front = -(r.q0z + t * r.dqz) / (r.q0w + t * r.dqw) < d_min;
+    float8 denom = r.dqz + d_min * r.dqw;
+    float8 t_cross = -(r.q0z + d_min * r.q0w) / denom;
+    t_cross = select((float8)(INFINITY), t_cross, (denom != 0.0f) & isfinite(t_cross) & deeper &
+                                                      (d_min < SSRCL_NO_SURFACE));
+    int8 cross = front & (t_cross <= t_exit);
+
+    float8 t_next = select(select(t, t_exit, front), fmax(t, t_cross), cross);
+    int8 mip_next = select(mip - 1, min(mip + 1, top), front & ~cross);
+    t_next = select(t_next, t_exit, fine);
+    mip_next = select(mip_next, select((int8)(0), (int8)(min(1, top)), in_front), fine);
+    fetches -= active;
+    active &= ~hit;
+    t = select(t, t_next, active);
+    mip = select(mip, mip_next, active);
+    iterations -= active;
+  }
+
+  float t_lane[8];
+  int lane_x[8], lane_y[8], lane_fetches[8], lane_behind[8], lane_thick[8];
+  vstore8(t_hit, 0, t_lane);
+  vstore8(hit_x, 0, lane_x);
+  vstore8(hit_y, 0, lane_y);
+  vstore8(iterations, 0, lane_iterations);
+  vstore8(fetches, 0, lane_fetches);
+  vstore8(seen, 0, lane_seen);
+  vstore8(behind, 0, lane_behind);
+  vstore8(thick, 0, lane_thick);
+  for (int k = 0; k < 8; ++k) {
+    if (!live[k]) continue;
+    t_hit_out[k] = t_lane[k];
+    hit_cell[k] = (int2)(lane_x[k], lane_y[k]);
+    sc[k].iterations = lane_iterations[k];
+    sc[k].fetches += lane_fetches[k];
+#if SSRCL_VIEWS
+    sc[k].seen = lane_seen[k] != 0;
+    sc[k].behind |= lane_behind[k] != 0;
+    sc[k].thick |= lane_thick[k] != 0;
+#endif
+  }
+}
+
 // Fixed steps of `step_pixels` along the major screen axis, each tested with hit_pixel against
 // the pixel it lands in: no hierarchy that could skip a thin feature, the reference tracer.
 inline float trace_linear(TraceScene* sc, const ScreenRay* ray, float3 dir, float step_pixels, int2* hit_cell) {
@@ -206,11 +368,14 @@ inline float trace_dda(TraceScene* sc, const ScreenRay* ray, float3 dir, int2* h
   return -1.0f;
 }
 
-// Traces the view-space segment p0 -> p1 (both in front of the camera) with direction dir.
-inline float trace_segment(TraceScene* sc, float16 proj, float linear_step, float3 p0, float3 p1, float3 dir,
-                           ScreenRay* ray, int2* cell) {
-  if (!make_screen_ray(proj, sc->size, p0, p1, ray)) return -1.0f;
-  if (!(fmax(fabs(ray->ds.x), fabs(ray->ds.y)) > 0.0f)) return -1.0f;
+// The screen ray of the view-space segment p0 -> p1 (both in front of the camera); false where
+// it has no on-screen length to trace.
+inline bool segment_ray(float16 proj, int2 size, float3 p0, float3 p1, ScreenRay* ray) {
+  return make_screen_ray(proj, size, p0, p1, ray) && fmax(fabs(ray->ds.x), fabs(ray->ds.y)) > 0.0f;
+}
+
+// Traces a screen ray with direction dir by the program's tracer.
+inline float trace_ray(TraceScene* sc, float linear_step, const ScreenRay* ray, float3 dir, int2* cell) {
 #if SSRCL_TRACER == SSRCL_TRACER_LINEAR
   return trace_linear(sc, ray, dir, linear_step, cell);
 #elif SSRCL_TRACER == SSRCL_TRACER_DDA
@@ -220,16 +385,30 @@ inline float trace_segment(TraceScene* sc, float16 proj, float linear_step, floa
 #endif
 }
 
-// Traces from view-space point p along unit direction dir: the segment ends at the near plane for
-// rays toward the camera, at the far plane otherwise, capped so an infinite far plane still gives a
-// finite end. Returns the hit's t on *ray (negative on a miss) and the pixel hit in *cell.
-inline float trace_from(TraceScene* sc, float16 proj, float near_plane, float far_plane, float linear_step, float3 p, float3 dir, ScreenRay* ray, int2* cell) {
+// Traces the view-space segment p0 -> p1 (both in front of the camera) with direction dir.
+inline float trace_segment(TraceScene* sc, float16 proj, float linear_step, float3 p0, float3 p1, float3 dir,
+                           ScreenRay* ray, int2* cell) {
+  return segment_ray(proj, sc->size, p0, p1, ray) ? trace_ray(sc, linear_step, ray, dir, cell) : -1.0f;
+}
+
+// The screen ray from view-space point p along unit direction dir: the segment ends at the near
+// plane for rays toward the camera, at the far plane otherwise, capped so an infinite far plane
+// still gives a finite end. False where there is nothing on screen to trace.
+inline bool ray_from(float16 proj, int2 size, float near_plane, float far_plane, float3 p, float3 dir,
+                     ScreenRay* ray) {
   float length_max = 1e6f * -p.z;
   float len = dir.z > 0.0f ? (-near_plane * 1.001f - p.z) / dir.z
             : dir.z < 0.0f ? (-far_plane - p.z) / dir.z : length_max;
   len = fmin(len, length_max);
-  if (!(len > 0.0f)) return -1.0f;
-  return trace_segment(sc, proj, linear_step, p, p + dir * len, dir, ray, cell);
+  return len > 0.0f && segment_ray(proj, size, p, p + dir * len, ray);
+}
+
+// Traces from view-space point p along unit direction dir (ray_from). Returns the hit's t on
+// *ray (negative on a miss) and the pixel hit in *cell.
+inline float trace_from(TraceScene* sc, float16 proj, float near_plane, float far_plane, float linear_step, float3 p,
+                        float3 dir, ScreenRay* ray, int2* cell) {
+  return ray_from(proj, sc->size, near_plane, far_plane, p, dir, ray) ? trace_ray(sc, linear_step, ray, dir, cell)
+                                                                      : -1.0f;
 }
 
 // The direction a surface with normal n and GGX alpha reflects toward o (unit, away from it): the
@@ -309,6 +488,16 @@ inline void count_work(__global int* counters, int gid, const TraceScene* sc) {
   atomic_inc(&counters[SSRCL_FETCH_SLOTS + (32 - clz(sc->iterations))]);
 }
 
+// A primary ray between its making and its shading (trace_rays).
+typedef struct {
+  int gid, sample;
+  size_t record;
+  float3 p;  // its origin, view space
+  float pdf, alpha;
+  int mirror;
+  int traced;  // its records are written: it is shaded (a miss where its screen ray is not live)
+} PixelRay;
+
 // Ray records, per (pixel, sample slot of this batch):
 //   ray_hit      hit: (view-space hit point, confidence >= 0); miss: (direction, -1)
 //   ray_radiance (rgb at the hit, pdf of the direction); pdf 0 marks a ray that is a delta
@@ -326,101 +515,139 @@ __kernel void trace_rays(TraceParams params, __global const float* hzb, __global
   const float mirror_roughness = params.frame.mirror_roughness, edge_fade = params.edge_fade;
   const int batch_size = params.batch_size, level_count = params.level_count;
   const uint seed = params.seed;
-  int gid = get_global_id(0);
-  if (gid >= params.listed * batch_size) return;
-  int i = ray_list[gid / batch_size];
-  int slot = gid % batch_size;
-  int sample = params.first_sample + slot;
-  if (sample >= pixel_rays[i]) return;
-  size_t record = (size_t)i * batch_size + slot;
-  ray_hit[record] = (float4)(0.0f, 0.0f, 0.0f, -1.0f);
-  ray_radiance[record] = (float4)(0.0f);
+  // SSRCL_TRACE_LANES consecutive rays per work-item: made one by one, traced together in lanes
+  // (Hi-Z), then shaded one by one.
+  const int first = (int)get_global_id(0) * SSRCL_TRACE_LANES;
+  PixelRay lane[SSRCL_TRACE_LANES];
+  TraceScene scene[SSRCL_TRACE_LANES];
+  ScreenRay lane_ray[SSRCL_TRACE_LANES];
+  float3 lane_dir[SSRCL_TRACE_LANES];
+  int lane_live[SSRCL_TRACE_LANES];  // a screen ray to trace
+  float lane_t[SSRCL_TRACE_LANES];
+  int2 lane_cell[SSRCL_TRACE_LANES];
+  for (int k = 0; k < SSRCL_TRACE_LANES; ++k) {
+    const ScreenRay none = {(float2)(0.0f), (float2)(0.0f), (float4)(0.0f), (float4)(0.0f)};
+    const TraceScene sc = {size, hzb, levels, level_count, planes, normals, params.max_iterations, 0, 0};
+    scene[k] = sc;  // every lane's: trace_hiz_lanes reads the frame from scene[0]
+    lane[k].traced = lane_live[k] = 0;
+    lane_ray[k] = none;  // lanes without a ray are traced too, their results unused
+    lane_dir[k] = (float3)(0.0f);
+    lane_t[k] = -1.0f;
+    int gid = first + k;
+    if (gid >= params.listed * batch_size) continue;
+    int i = ray_list[gid / batch_size];
+    int slot = gid % batch_size;
+    int sample = params.first_sample + slot;
+    if (sample >= pixel_rays[i]) continue;
+    size_t record = (size_t)i * batch_size + slot;
+    ray_hit[record] = (float4)(0.0f, 0.0f, 0.0f, -1.0f);
+    ray_radiance[record] = (float4)(0.0f);
 #if SSRCL_VIEWS
-  ray_state[record] = 0;
+    ray_state[record] = 0;
 #endif
 
-  float4 nr = normals[i];
-  float3 n = nr.xyz;
-  float3 v;
-  float3 p = pixel_view_point(inv_proj, size, (int2)(i % size.x, i / size.x), positions[i].w, &v);
-  float3 o = -v;
-  if (dot(o, n) <= 0.0f) return;  // normal faces away from the viewer: no defined reflection
+    float4 nr = normals[i];
+    float3 n = nr.xyz;
+    float3 v;
+    float3 p = pixel_view_point(inv_proj, size, (int2)(i % size.x, i / size.x), positions[i].w, &v);
+    float3 o = -v;
+    if (dot(o, n) <= 0.0f) continue;  // normal faces away from the viewer: no defined reflection
 
-  // Mirror-like pixels have one ray, the exact mirror direction.
-  bool mirror = nr.w <= mirror_roughness;
-  float alpha = fmax(roughness_to_alpha(nr.w, SSRCL_ROUGHNESS_MAPPING), 1e-4f);
-  float pdf;
-  float3 dir = sample_reflection(o, n, mirror, alpha, sample_2d(i, sample, seed), &pdf);
-  if (!(dot(dir, dir) > 0.0f)) return;
-  ray_hit[record] = (float4)(dir, -1.0f);
-  ray_radiance[record] = (float4)(0.0f, 0.0f, 0.0f, pdf);
+    // Mirror-like pixels have one ray, the exact mirror direction.
+    bool mirror = nr.w <= mirror_roughness;
+    float alpha = fmax(roughness_to_alpha(nr.w, SSRCL_ROUGHNESS_MAPPING), 1e-4f);
+    float pdf;
+    float3 dir = sample_reflection(o, n, mirror, alpha, sample_2d(i, sample, seed), &pdf);
+    if (!(dot(dir, dir) > 0.0f)) continue;
+    ray_hit[record] = (float4)(dir, -1.0f);
+    ray_radiance[record] = (float4)(0.0f, 0.0f, 0.0f, pdf);
 
-  TraceScene sc = {size, hzb, levels, level_count, planes, normals, params.max_iterations, 0, 0};
-  ScreenRay ray;
-  int2 cell;  // the pixel whose surface the ray hit; its colour is the hit's colour
-  float t = trace_from(&sc, proj, near_plane, far_plane, linear_step, p, dir, &ray, &cell);
-#if SSRCL_VIEWS
-  // Only the primary ray's passage counts: the glossy hit's second ray below only shades the hit.
-  ray_state[record] = (sc.behind ? SSRCL_RAY_BEHIND : 0) | (t >= 0.0f && sc.thick ? SSRCL_RAY_THICK : 0);
-#endif
-  if (t < 0.0f) {
-    if (SSRCL_COUNT_WORK) count_work(work_counters, gid, &sc);
-    return;
+    PixelRay made = {gid, sample, record, p, pdf, alpha, mirror, 1};
+    lane[k] = made;
+    lane_dir[k] = dir;
+    lane_live[k] = ray_from(proj, size, near_plane, far_plane, p, dir, &lane_ray[k]);
   }
-
-  float2 s = ray_screen(&ray, t);
-  float3 hit = ray_point(&ray, t);
-  cell = clamp(cell, (int2)(0, 0), size - 1);
-  int q = cell.y * size.x + cell.x;
-  // A prefiltered hit is looked up once the batch's hits are counted (hit_prefilter.cl): recorded
-  // as the screen position and the mip of its footprint.
-  bool prefiltered = prefiltered_hit(&sc, q, mirror ? 0.0f : alpha, params.cone_scale);
-  float4 radiance = prefiltered
-                        ? (float4)(s, -1.0f - hit_mip_level(&sc, proj, &ray, t, length(hit - p), alpha, params.cone_scale), 0.0f)
-                        : color_pyramid[q];
-  // A hit on a glossy pixel: its screen colour is what it reflects toward the camera, not toward
-  // this pixel. With its non-reflected radiance known (`base`), the hit's radiance is that plus
-  // its specular part, what one more ray, reflected at the hit, finds, times its specular colour.
-  // A pixel wrongly marked glossy (a material that writes no roughness reads 0) has specular
-  // colour 0 and keeps its base: its screen colour. A mirror ray is one sample nothing averages:
-  // it bounces only where the second ray is deterministic too (a mirror-like hit); a rough hit's
-  // one second ray shows there as noise (mirror sample: floor within 25% of Cycles 0.90 -> 0.74).
-  float4 nq = normals[q];
-  bool bounce = !mirror || nq.w <= mirror_roughness;
-  if (!prefiltered && params.has_base && nq.w < params.glossy_hit_roughness && (SSRCL_MATERIAL_HITS || bounce)) {
-    float alpha_q = fmax(roughness_to_alpha(nq.w, SSRCL_ROUGHNESS_MAPPING), 1e-4f);
-    float4 found = bounce ? trace_bounce(&sc, proj, near_plane, far_plane, linear_step, edge_fade, mirror_roughness,
-                                         color_pyramid, hit, dir, nq, alpha_q, q, sample, seed)
-                          : (float4)(0.0f, 0.0f, 0.0f, -1.0f);
-#if SSRCL_MATERIAL_HITS
-    // The specular colour times E(the hit's F0, its roughness, toward this pixel) times what the
-    // ray finds: Cycles' GlossCol is ~1 on dielectrics and metals alike, the Fresnel and a metal's
-    // tint live in Glossy Direct/Indirect, so with the colour alone a dielectric's specular part
-    // came out 10-25x too bright (1 against E 0.04-0.1 off grazing). Where the ray finds nothing
-    // (c2 < 1), or none is traced (a mirror ray on a rough hit), the guess is the glossy light
-    // the camera sees there times E(toward this pixel) / E(toward the camera), at most 1: raised,
-    // the camera's highlight comes back as the blob (where the floor shows props, issue 24's
-    // corpus and tests/data/glazed_props: capped it ties the screen colour within 0.01 dB on all
-    // six scenes, uncapped it loses up to 0.16 dB).
-    float3 f0_q = vload3(q, f0), base_q = vload3(q, base);
-    float2 e = specular_albedo(albedo, alpha_q, dot(nq.xyz, -dir));
-    float3 e_out = f0_q * e.x + e.y;
-    float3 v_q;
-    pixel_view_point(inv_proj, size, cell, positions[q].w, &v_q);
-    float2 e_cam = specular_albedo(albedo, alpha_q, dot(nq.xyz, -v_q));
-    float3 shaded = base_q + fmin(e_out / fmax(f0_q * e_cam.x + e_cam.y, 1e-4f), 1.0f) * (radiance.xyz - base_q);
-    if (found.w >= 0.0f) shaded = mix(shaded, base_q + vload3(q, specular) * e_out * found.xyz, found.w);
-    radiance.xyz = sanitize_radiance3(shaded);
+#if SSRCL_TRACER == SSRCL_TRACER_HIZ
+  trace_hiz_lanes(scene, lane_ray, lane_dir, lane_live, lane_t, lane_cell);
 #else
-    // Where the ray finds nothing on screen (confidence c2 < 1) the screen colour stays the best
-    // guess for that share.
-    if (found.w >= 0.0f) {
-      float3 bounced = vload3(q, base) + vload3(q, specular) * found.xyz;
-      radiance.xyz = sanitize_radiance3(mix(radiance.xyz, bounced, found.w));
-    }
+  for (int k = 0; k < SSRCL_TRACE_LANES; ++k)
+    if (lane_live[k]) lane_t[k] = trace_ray(&scene[k], linear_step, &lane_ray[k], lane_dir[k], &lane_cell[k]);
 #endif
+
+  for (int k = 0; k < SSRCL_TRACE_LANES; ++k) {
+    if (!lane[k].traced) continue;
+    const int gid = lane[k].gid, sample = lane[k].sample;
+    const size_t record = lane[k].record;
+    const float3 p = lane[k].p, dir = lane_dir[k];
+    const float pdf = lane[k].pdf, alpha = lane[k].alpha;
+    const bool mirror = lane[k].mirror;
+    TraceScene sc = scene[k];
+    const ScreenRay ray = lane_ray[k];
+    int2 cell = lane_cell[k];  // the pixel whose surface the ray hit; its colour is the hit's colour
+    float t = lane_t[k];
+#if SSRCL_VIEWS
+    // Only the primary ray's passage counts: the glossy hit's second ray below only shades the hit.
+    ray_state[record] = (sc.behind ? SSRCL_RAY_BEHIND : 0) | (t >= 0.0f && sc.thick ? SSRCL_RAY_THICK : 0);
+#endif
+    if (t < 0.0f) {
+      if (SSRCL_COUNT_WORK) count_work(work_counters, gid, &sc);
+      continue;
+    }
+
+    float2 s = ray_screen(&ray, t);
+    float3 hit = ray_point(&ray, t);
+    cell = clamp(cell, (int2)(0, 0), size - 1);
+    int q = cell.y * size.x + cell.x;
+    // A prefiltered hit is looked up once the batch's hits are counted (hit_prefilter.cl): recorded
+    // as the screen position and the mip of its footprint.
+    bool prefiltered = prefiltered_hit(&sc, q, mirror ? 0.0f : alpha, params.cone_scale);
+    float4 radiance = prefiltered
+                          ? (float4)(s, -1.0f - hit_mip_level(&sc, proj, &ray, t, length(hit - p), alpha, params.cone_scale), 0.0f)
+                          : color_pyramid[q];
+    // A hit on a glossy pixel: its screen colour is what it reflects toward the camera, not toward
+    // this pixel. With its non-reflected radiance known (`base`), the hit's radiance is that plus
+    // its specular part, what one more ray, reflected at the hit, finds, times its specular colour.
+    // A pixel wrongly marked glossy (a material that writes no roughness reads 0) has specular
+    // colour 0 and keeps its base: its screen colour. A mirror ray is one sample nothing averages:
+    // it bounces only where the second ray is deterministic too (a mirror-like hit); a rough hit's
+    // one second ray shows there as noise (mirror sample: floor within 25% of Cycles 0.90 -> 0.74).
+    float4 nq = normals[q];
+    bool bounce = !mirror || nq.w <= mirror_roughness;
+    if (!prefiltered && params.has_base && nq.w < params.glossy_hit_roughness && (SSRCL_MATERIAL_HITS || bounce)) {
+      float alpha_q = fmax(roughness_to_alpha(nq.w, SSRCL_ROUGHNESS_MAPPING), 1e-4f);
+      float4 found = bounce ? trace_bounce(&sc, proj, near_plane, far_plane, linear_step, edge_fade, mirror_roughness,
+                                           color_pyramid, hit, dir, nq, alpha_q, q, sample, seed)
+                            : (float4)(0.0f, 0.0f, 0.0f, -1.0f);
+#if SSRCL_MATERIAL_HITS
+      // The specular colour times E(the hit's F0, its roughness, toward this pixel) times what the
+      // ray finds: Cycles' GlossCol is ~1 on dielectrics and metals alike, the Fresnel and a metal's
+      // tint live in Glossy Direct/Indirect, so with the colour alone a dielectric's specular part
+      // came out 10-25x too bright (1 against E 0.04-0.1 off grazing). Where the ray finds nothing
+      // (c2 < 1), or none is traced (a mirror ray on a rough hit), the guess is the glossy light
+      // the camera sees there times E(toward this pixel) / E(toward the camera), at most 1: raised,
+      // the camera's highlight comes back as the blob (where the floor shows props, issue 24's
+      // corpus and tests/data/glazed_props: capped it ties the screen colour within 0.01 dB on all
+      // six scenes, uncapped it loses up to 0.16 dB).
+      float3 f0_q = vload3(q, f0), base_q = vload3(q, base);
+      float2 e = specular_albedo(albedo, alpha_q, dot(nq.xyz, -dir));
+      float3 e_out = f0_q * e.x + e.y;
+      float3 v_q;
+      pixel_view_point(inv_proj, size, cell, positions[q].w, &v_q);
+      float2 e_cam = specular_albedo(albedo, alpha_q, dot(nq.xyz, -v_q));
+      float3 shaded = base_q + fmin(e_out / fmax(f0_q * e_cam.x + e_cam.y, 1e-4f), 1.0f) * (radiance.xyz - base_q);
+      if (found.w >= 0.0f) shaded = mix(shaded, base_q + vload3(q, specular) * e_out * found.xyz, found.w);
+      radiance.xyz = sanitize_radiance3(shaded);
+#else
+      // Where the ray finds nothing on screen (confidence c2 < 1) the screen colour stays the best
+      // guess for that share.
+      if (found.w >= 0.0f) {
+        float3 bounced = vload3(q, base) + vload3(q, specular) * found.xyz;
+        radiance.xyz = sanitize_radiance3(mix(radiance.xyz, bounced, found.w));
+      }
+#endif
+    }
+    if (SSRCL_COUNT_WORK) count_work(work_counters, gid, &sc);
+    ray_hit[record] = (float4)(hit, edge_confidence(s, size, edge_fade));
+    ray_radiance[record] = (float4)(radiance.xyz, pdf);
   }
-  if (SSRCL_COUNT_WORK) count_work(work_counters, gid, &sc);
-  ray_hit[record] = (float4)(hit, edge_confidence(s, size, edge_fade));
-  ray_radiance[record] = (float4)(radiance.xyz, pdf);
 }
