@@ -84,6 +84,7 @@ typedef struct {
   ssrcl_int width, height;
   ssrcl_int axis;  // 0: rows, 1: columns
   float scale, min_rel, max_rel;
+  ssrcl_int orthographic;  // known_thickness: viewing lines along -z, not through the eye
 } ThicknessParams;
 
 // kernels/trace.cl (tracer, roughness mapping and counting mode are program defines)
