@@ -34,12 +34,12 @@ class SSRCL_OT_setup(bpy.types.Operator):
             back_faces.add_back_face_layer(scene)
         compositor.ensure_nodes(scene)
         scene.ssrcl.enabled = True
-        self.report({'INFO'}, "ssrcl: passes on view layer '%s', back-face depth on '" + back_faces.LAYER +
-                    "'; roughness, base_color and metallic "
+        self.report({'INFO'}, "ssrcl: passes on view layer '%s', back-face depth on '%s'; "
+                    "roughness, base_color and metallic "
                     "AOVs added to %d Principled material(s), %d Glossy BSDF one(s) (metallic 1), "
                     "%d without either (roughness %g, metallic 0); the pass replaces Glossy "
                     "Direct + Indirect in the composite"
-                    % (context.view_layer.name, len(wired["principled"]), len(wired["glossy"]),
+                    % (context.view_layer.name, back_faces.LAYER, len(wired["principled"]), len(wired["glossy"]),
                        len(wired["no_lobe"]), passes.NO_LOBE_ROUGHNESS))
         if wired["skipped"]:
             self.report({'WARNING'}, "ssrcl: materials without nodes write no AOVs (ssrcl reads "
