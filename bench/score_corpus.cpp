@@ -14,7 +14,8 @@
 //
 // A configuration is a preset name, optionally with settings after a colon:
 //   medium   high:spp=32   medium:thickness=0.01   medium:model=constant,thickness=0.005
-// Keys: thickness (constant), model (adaptive|constant), scale, tmin, tmax (adaptive),
+// Keys: thickness (constant), model (adaptive|constant), scale, tmin, tmax (adaptive), back (1: the
+// scene's back-face depth pass <scene>.back.exr, samples/blender/render_back_faces.py),
 // hits (bounce, the default: hits on glossy pixels continue, with the render's glossy passes;
 // screen: they take the screen colour), materials (1, the default: those hits are shaded with
 // each pixel's F0 from the render's base_color / metallic AOVs where it has them, as `ssrcl trace`
@@ -57,6 +58,7 @@ struct Config {
   bool glossyPassForm = false;  // score the glossy-pass output form
   bool fill = true;             // with --environment: misses take it (fill=0: the premultiplied pass)
   size_t views = 0;             // auxiliary views used (SIZE_MAX: all found)
+  bool backDepth = false;       // the scene's back-face depth pass, <scene>.back.exr beside it
   ssrcl::TraceSettings settings;
 };
 
@@ -129,6 +131,8 @@ Config parseConfig(const std::string& spec) {
       c.fill = value == "1";
     } else if (key == "views") {
       c.views = value == "all" ? SIZE_MAX : std::stoul(value);
+    } else if (key == "back") {
+      c.backDepth = value == "1";
     } else if (key == "iterations") {
       s.maxIterations = std::stoi(value);
     } else {
@@ -205,6 +209,22 @@ void writeComparison(const std::string& path, const ssrcl::test::CyclesReference
   f.write(reinterpret_cast<const char*>(rgb.data()), std::streamsize(rgb.size()));
 }
 
+std::string backDepthPath(const std::string& scene) {
+  const std::filesystem::path p(scene);
+  return (p.parent_path() / (p.stem().string() + ".back.exr")).string();
+}
+
+// The scene's back-face depth pass as `ssrcl trace --back-depth-file` reads it; empty without one.
+ssrcl::Image sceneBackDepth(const std::string& scene, const ssrcl::Camera& camera) {
+  if (!std::filesystem::exists(backDepthPath(scene))) return {};
+  ssrcl::GBufferSource source;
+  source.file = scene;
+  source.backDepthFile = backDepthPath(scene);
+  ssrcl::GBuffer g = ssrcl::loadGBuffer(source);
+  ssrcl::applyInputConventions(g, source, camera);
+  return g.backDepth;
+}
+
 struct Score {
   bool present = false;
   double ms = 0;
@@ -267,6 +287,7 @@ int main(int argc, char** argv) {
       ssrcl::test::CyclesReference unscaled = ref;
       std::fill(unscaled.scale.begin(), unscaled.scale.end(), 1.0);
       const SceneViews views = loadSceneViews(viewsDir.empty() ? corpus + "/views" : viewsDir, scenes[s].name);
+      const ssrcl::Image backDepth = sceneBackDepth(scenes[s].path, ref.camera);
       ssrcl::Pipeline pipeline(device);
       pipeline.setGBuffer(ref.gbuffer);
       pipeline.setCamera(ref.camera);
@@ -287,6 +308,10 @@ int main(int argc, char** argv) {
         const bool materials = configs[c].materials && withF0.f0.empty();  // the render's own AOVs
         pipeline.setImage("base_color", materials ? withF0.baseColor : none);
         pipeline.setImage("metallic", materials ? withF0.metallic : none);
+        if (configs[c].backDepth && backDepth.empty())
+          throw std::runtime_error(scenes[s].name + ": " + configs[c].label + " needs its back-face depth pass " +
+                                   backDepthPath(scenes[s].path) + " (samples/blender/render_back_faces.py)");
+        pipeline.setImage("back_depth", configs[c].backDepth ? backDepth : none);
         pipeline.settings() = configs[c].settings;
         const ssrcl::EnvironmentMap noEnvironment;
         pipeline.setEnvironment(configs[c].fill ? environment : noEnvironment);

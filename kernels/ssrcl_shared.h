@@ -95,6 +95,7 @@ typedef struct {
   FrameConstants frame;
   ssrcl_int axis;  // 0: rows, 1: columns
   float scale, min_rel, max_rel;
+  ssrcl_int orthographic;  // known_thickness: viewing lines along -z, not through the eye
 } ThicknessParams;
 
 // kernels/trace.cl (tracer, roughness mapping and counting mode are program defines)

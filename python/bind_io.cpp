@@ -25,7 +25,8 @@ Frame loadFrame(const std::string& path, const std::string& camera, const std::s
                 const std::string& depthKind, const std::string& normalSpace, std::optional<float> roughness,
                 const std::string& roughnessChannel, const std::string& position, bool glossyPasses, bool inputCheck,
                 const std::string& outputForm, const std::string& f0Channels, const std::string& baseColorChannels,
-                const std::string& metallicChannel, const std::string& materialFile, std::optional<double> fov) {
+                const std::string& metallicChannel, const std::string& materialFile, std::optional<double> fov,
+                const std::string& backDepthFile, const std::string& backDepthChannel) {
   FrameSource s;
   s.file = path;
   s.camera = camera;
@@ -43,6 +44,8 @@ Frame loadFrame(const std::string& path, const std::string& camera, const std::s
   s.baseColorChannels = baseColorChannels;
   s.metallicChannel = metallicChannel;
   s.materialFile = materialFile;
+  s.backDepthFile = backDepthFile;
+  s.backDepthChannel = backDepthChannel;
   return ssrcl::loadFrame(s);
 }
 
@@ -67,6 +70,8 @@ void bindIo(py::module_& m) {
       .def_property_readonly("roughness", &passView<&GBuffer::roughness>)
       .def_property_readonly("base", &passView<&GBuffer::base>)
       .def_property_readonly("specular", &passView<&GBuffer::specular>)
+      .def_property_readonly("backDepth", &passView<&GBuffer::backDepth>,
+                             "Planar back-face depth, 0 where unknown; None without a back-face pass.")
       .def_property_readonly("camera", [](const Frame& f) { return f.camera; })
       .def_property_readonly("displayCamera", [](const Frame& f) { return f.displayCamera; },
                              "The camera of the display window (the one written into the output's header).")
@@ -78,7 +83,8 @@ void bindIo(py::module_& m) {
         py::arg("roughnessChannel") = "", py::arg("position") = "", py::arg("glossyPasses") = true,
         py::arg("inputCheck") = true, py::arg("outputForm") = "", py::arg("f0Channels") = "",
         py::arg("baseColorChannels") = "", py::arg("metallicChannel") = "", py::arg("materialFile") = "",
-        py::arg("fov") = py::none(), py::call_guard<py::gil_scoped_release>(),
+        py::arg("fov") = py::none(), py::arg("backDepthFile") = "", py::arg("backDepthChannel") = "",
+        py::call_guard<py::gil_scoped_release>(),
         "Reads a G-buffer EXR and its camera as `ssrcl trace` does: the camera JSON `camera`, by default "
         "<stem>.camera.json beside the EXR or else the EXR header's camera; the renderer preset's channel names "
         "and conventions (depthKind, normalSpace override them); roughness (a number, as TraceSettings.constantRoughness) replaces the roughness channel; "
@@ -87,7 +93,8 @@ void bindIo(py::module_& m) {
         "(f0Channels, or baseColorChannels + metallicChannel, by default Blender AOVs base_color and metallic; "
         "materialFile: another EXR holding them); '' (the default) reads them where `ssrcl trace` would take that "
         "form (defaultOutputForm), 'incident' never. fov (degrees, horizontal) completes a header camera that has a "
-        "pose and no projection (Karma's), as `--fov`.");
+        "pose and no projection (Karma's), as `--fov`. backDepthFile / backDepthChannel: the back-face depth pass, as "
+        "`--back-depth-file` / `--back-depth-channel` (by default the file's own BackFaces.Depth.Z, if any).");
 
   m.def(
       "defaultOutputForm",

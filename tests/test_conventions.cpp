@@ -712,7 +712,10 @@ TEST(ConventionCheck, CorpusScenes) {
   int scenes = 0;
   for (const auto& entry : std::filesystem::directory_iterator(corpus)) {
     const std::string name = entry.path().stem().string();
-    if (entry.path().extension() != ".exr" || name.find(".eevee") != std::string::npos) continue;  // EEVEE's renders
+    // EEVEE's renders and the back-face depth passes are no G-buffers.
+    if (entry.path().extension() != ".exr" || name.find(".eevee") != std::string::npos ||
+        name.find(".back") != std::string::npos)
+      continue;
     ++scenes;
     ssrcl::GBufferSource source;
     source.file = entry.path().string();

@@ -156,6 +156,11 @@ Action addBatchCommand(CLI::App& app) {
   cmd->add_option("--camera", o->request.camera,
                   "One camera JSON for all frames, or a pattern/{stem} template (default: <stem>.camera.json beside "
                   "each frame, else the frame's EXR header camera)");
+  cmd->add_option("--back-depth-file", o->request.backDepth,
+                  "Each frame's back-face depth: a pattern/{stem} template ('back/sh010.####.exr'), as "
+                  "`ssrcl trace --back-depth-file` (default: each frame's own BackFaces.Depth.Z, if any)");
+  cmd->add_option("--back-depth-channel", o->in.source.backDepthChannel,
+                  "Its channel, as `ssrcl trace --back-depth-channel`");
   cmd->add_option("--device", o->device, "OpenCL device: index from `ssrcl devices`, cpu, gpu or default");
   addViewOptions(*cmd, o->views, o->viewCameras,
                  "Auxiliary view shared by every frame: a G-buffer EXR of the same (static) scene from another "

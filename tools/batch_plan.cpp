@@ -85,6 +85,7 @@ std::vector<FrameJob> planBatch(const BatchRequest& r) {
   for (FrameJob& job : jobs) {
     job.output = expand(output, job, "-o");
     job.camera = r.camera.empty() ? sidecarCameraPath(job.input) : expand(r.camera, job, "--camera");
+    if (!r.backDepth.empty()) job.backDepth = expand(r.backDepth, job, "--back-depth-file");
     const std::string key = canonical(job.output);
     if (inputs.count(key)) bad(job.output + ": refusing to overwrite an input G-buffer");
     auto [it, fresh] = byOutput.emplace(key, &job);

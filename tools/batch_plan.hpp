@@ -10,6 +10,7 @@ struct FrameJob {
   std::string name;          // the frame number, or the input's stem when it has none
   std::optional<int> frame;  // set for frame patterns
   std::string input, camera, output;
+  std::string backDepth;     // its back-face depth file; empty: the frame's own BackFaces layer, if any
 };
 
 // What `ssrcl batch` was asked to do, as typed.
@@ -18,6 +19,7 @@ struct BatchRequest {
   std::string output;               // "refl/sh010.####.exr", "refl/{stem}.refl.exr", or a directory ("refl/")
   std::string frames;               // a range for a frame pattern; empty: the frames on disk
   std::string camera;               // empty: <stem>.camera.json beside each frame; else one file, or a pattern
+  std::string backDepth;            // empty: none (each frame's own BackFaces layer); else a pattern or template
 };
 
 // Every frame of the request, in frame (or path) order, with its paths resolved. Throws

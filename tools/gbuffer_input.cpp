@@ -86,12 +86,22 @@ void addPassFileOptions(CLI::App& cmd, GBufferInputOptions& o) {
   cmd.add_option("--roughness-file", o.source.roughnessFile, "Read roughness from this EXR instead")->group(in);
   cmd.add_option("--position-file", o.source.positionFile, "Read positions (--position) from this EXR instead")
       ->group(in);
+  cmd.add_option("--back-depth-file", o.source.backDepthFile,
+                 "Back-face depth of the same camera (planar, or the depth's kind; 1e10 = none): exact surface "
+                 "thickness where known. A deep EXR gives its first sample's ZBack. Default: the frame's "
+                 "BackFaces.Depth.Z where it has one")
+      ->group(in);
+  cmd.add_option("--back-depth-channel", o.source.backDepthChannel,
+                 "Its channel (default ViewLayer.Depth.Z in --back-depth-file; without it, a channel of the frame's "
+                 "depth file)")
+      ->group(in);
 }
 
 GBufferInputOptions viewInputOptions(const GBufferInputOptions& o) {
   GBufferInputOptions viewOptions = o;  // a view has its own file for every pass, and no material passes
   FrameSource& s = viewOptions.source;
   s.colorFile = s.depthFile = s.normalFile = s.roughnessFile = s.positionFile = "";
+  s.backDepthFile = s.backDepthChannel = "";
   s.glossyPasses = false;
   viewOptions.form = OutputFormOptions{};
   return viewOptions;

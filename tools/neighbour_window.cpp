@@ -7,7 +7,9 @@
 namespace ssrcl::cli {
 
 FrameSource frameSource(const GBufferInputOptions& input, const FrameJob& job) {
-  return input.sourceFor(job.input, job.camera == sidecarCameraPath(job.input) ? "" : job.camera);
+  FrameSource s = input.sourceFor(job.input, job.camera == sidecarCameraPath(job.input) ? "" : job.camera);
+  s.backDepthFile = job.backDepth;
+  return s;
 }
 
 NeighbourWindow::NeighbourWindow(const GBufferInputOptions& input, std::vector<FrameJob> sequence, int k, int firstView)

@@ -51,6 +51,10 @@ ReflectionExrOptions writerOptions(const OutputOptions& o, const OutputRecord& r
                                                                  {"material", &source.materialFile}};
   for (const auto& [what, value] : material)
     if (!value->empty()) inputs[what] = *value;
+  if (!frame.gbuffer.backDepth.empty()) {  // where the thickness came from, for a rerun
+    inputs["back_depth"] = !source.backDepthFile.empty() ? source.backDepthFile : input;
+    if (!source.backDepthChannel.empty()) inputs["back_depth_channel"] = source.backDepthChannel;
+  }
   inputs["camera"] = frame.cameraSource;
   if (!record.environment.empty()) inputs["environment"] = record.environment;
   if (!record.views.empty()) inputs["views"] = record.views;

@@ -26,6 +26,7 @@
 #include <utility>
 #include <vector>
 
+#include "exr_deep_depth.hpp"
 #include "exr_header_camera.hpp"
 #include "exr_header_check.hpp"
 #include "ssrcl/error.hpp"
@@ -466,6 +467,20 @@ GBuffer loadGBuffer(const GBufferSource& source) {
       passes.push_back({"depth", &gbuffer.depth, 1, source.positionFile, source.depthChannel, "Depth.Z", "Z"});
   }
 
+  // The back-face depth: the channel named (by default Blender's ViewLayer.Depth.Z) of its own
+  // file, or of the depth's file; else the add-on's BackFaces layer where that file holds it. A
+  // deep file is read sample by sample below.
+  const std::string depthPath = source.depthFile.empty() ? source.file : source.depthFile;
+  const std::string backPath = source.backDepthFile.empty() ? depthPath : source.backDepthFile;
+  const bool deepBack = !source.backDepthFile.empty() && detail::isDeepExr(backPath);
+  std::string backChannel = source.backDepthChannel;
+  if (backChannel.empty() && !source.backDepthFile.empty()) backChannel = "ViewLayer.Depth.Z";
+  if (backChannel.empty() && !backPath.empty() && holdsAny(files.try_emplace(backPath, backPath).first->second,
+                                                           "BackFaces.Depth.Z"))
+    backChannel = "BackFaces.Depth.Z";
+  if (!deepBack && !backChannel.empty())
+    passes.push_back({"back-face depth", &gbuffer.backDepth, 1, backPath, backChannel, "", ""});
+
   std::vector<Request> requests;
   for (const Pass& pass : passes) {
     const std::string& path = pass.file.empty() ? source.file : pass.file;
@@ -543,6 +558,15 @@ GBuffer loadGBuffer(const GBufferSource& source) {
         part.readPixels(window.min.y, window.max.y);
       }
     });
+  }
+  if (deepBack) {
+    gbuffer.backDepth = detail::firstIntervalBack(detail::readDeepDepth(backPath));
+    if (gbuffer.backDepth.width != first.ref.width || gbuffer.backDepth.height != first.ref.height)
+      throw Error(ErrorCode::InvalidInput, backPath + ": the deep back-face depth is " +
+                                               std::to_string(gbuffer.backDepth.width) + "x" +
+                                               std::to_string(gbuffer.backDepth.height) + " but " +
+                                               first.file->path() + " is " + std::to_string(first.ref.width) + "x" +
+                                               std::to_string(first.ref.height) + "; all passes must have the same size");
   }
   if (!glossCol.empty()) {
     gbuffer.base = gbuffer.color;

@@ -73,6 +73,8 @@ GBufferSource passesOf(const FrameSource& s) {
   p.depthKind = s.depthKind.value_or(preset.depthKind);
   p.normalSpace = s.normalSpace.value_or(preset.normalSpace);
   p.glossyPasses = s.glossyPasses;
+  p.backDepthFile = s.backDepthFile;
+  p.backDepthChannel = s.backDepthChannel;
   nameMaterialPasses(s, p);
   return p;
 }

@@ -1,5 +1,6 @@
 // The loader's last step: a G-buffer in any supported convention becomes the pipeline's
 // (planar depth, world-space normals), so the kernels see one convention only.
+#include "back_depth.hpp"
 #include "conventions.hpp"
 #include "ssrcl/error.hpp"
 
@@ -32,6 +33,7 @@ void applyInputConventions(GBuffer& g, const GBufferSource& source, const Camera
   else if (source.depthKind == DepthKind::Radial)
     g.depth = detail::planarFromRadial(g.depth, camera);
   g.normal = detail::worldNormals(g.normal, source.normalSpace, camera);
+  detail::prepareBackDepth(g, source, camera);
 }
 
 }  // namespace ssrcl

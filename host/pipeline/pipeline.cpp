@@ -8,6 +8,7 @@
 #include "frame_resources.hpp"
 #include "hzb_stage.hpp"
 #include "image_views.hpp"
+#include "io/conventions.hpp"
 #include "pipeline_inputs.hpp"
 #include "resolve_stage.hpp"
 #include "settings_validation.hpp"
@@ -41,7 +42,7 @@ struct Pipeline::Impl {
   TraceSettings committedSettings;
   FrameShape frame;
   int colorChannels = 0;
-  bool hasBase = false, hasMaterials = false;
+  bool hasBase = false, hasMaterials = false, hasBackDepth = false;
   std::vector<float> hitF0;  // each pixel's F0 with material passes, packed for the trace
   std::map<std::string, PipelineInputs::Shape> committedInputs;  // new images of these shapes need no commit
   // Each view's images are uploaded and its setup, HZB, colours and thickness computed once, at
@@ -105,12 +106,14 @@ void Pipeline::Impl::plan() {
   const int channels = inputs.view("color").channels;
   const bool base = inputs.has("base");
   const bool materials = inputs.has("f0") || inputs.has("base_color");
+  const bool back = inputs.has("back_depth");
   const bool reconfigure = !configured || settings != committedSettings || base != hasBase ||
-                           materials != hasMaterials || environmentChanged || views.size() != committedViews;
+                           materials != hasMaterials || back != hasBackDepth || environmentChanged ||
+                           views.size() != committedViews;
   const int viewCount = static_cast<int>(views.size());
   if (reconfigure) {
     setup.configure(d);
-    thickness.configure(d, settings);
+    thickness.configure(d, settings, back);
     hzb.configure(d);
     colors.configure(d, settings);
     trace.configure(d, settings, base, materials, viewCount > 0);
@@ -126,6 +129,7 @@ void Pipeline::Impl::plan() {
   colorChannels = channels;
   hasBase = base;
   hasMaterials = materials;
+  hasBackDepth = back;
   committedSettings = settings;
   committedInputs = inputs.shapes();
   committedViews = views.size();
@@ -201,7 +205,8 @@ void Pipeline::Impl::run() {
   stage = "color_mips";
   colors.enqueue(q, events);
   stage = "thickness";
-  thickness.enqueue(q, constants, s, events);
+  thickness.enqueue(q, constants, s, hasBackDepth ? inputs.pixels("back_depth") : nullptr,
+                    !detail::isPerspective(camera), events);
   stage = "views";
   viewStage.prepare(q, views, s, events);
   if (!views.empty()) viewStage.limitRadiance(inputs.pixels("color"), frame.pixels(), colorChannels);
@@ -304,6 +309,7 @@ void Pipeline::setGBuffer(const GBuffer& gbuffer) {
   if (!gbuffer.f0.empty()) setImage("f0", gbuffer.f0);
   if (!gbuffer.baseColor.empty()) setImage("base_color", gbuffer.baseColor);
   if (!gbuffer.metallic.empty()) setImage("metallic", gbuffer.metallic);
+  if (!gbuffer.backDepth.empty()) setImage("back_depth", gbuffer.backDepth);
 }
 
 void Pipeline::setView(int index, const GBuffer& gbuffer, const Camera& camera, const std::string& label,

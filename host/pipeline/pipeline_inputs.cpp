@@ -13,7 +13,7 @@ struct InputKind {
   const char* name;
   int channels;  // colour takes 3 or 4
 };
-constexpr std::array<InputKind, 9> kInputs = {{{"color", 3},
+constexpr std::array<InputKind, 10> kInputs = {{{"color", 3},
                                                {"depth", 1},
                                                {"normal", 3},
                                                {"roughness", 1},
@@ -21,19 +21,20 @@ constexpr std::array<InputKind, 9> kInputs = {{{"color", 3},
                                                {"specular", 3},
                                                {"f0", 3},
                                                {"base_color", 3},
-                                               {"metallic", 1}}};
+                                               {"metallic", 1},
+                                               {"back_depth", 1}}};
 
 // Inputs a frame may go without.
 bool optional(const std::string& name, const TraceSettings& s) {
   return (name == "roughness" && s.constantRoughness) || name == "base" || name == "specular" || name == "f0" ||
-         name == "base_color" || name == "metallic";
+         name == "base_color" || name == "metallic" || name == "back_depth";
 }
 
 void checkName(const std::string& name) {
   if (std::none_of(kInputs.begin(), kInputs.end(), [&](const InputKind& k) { return name == k.name; }))
     throw Error(ErrorCode::InvalidArgument,
                 "unknown input image '" + name +
-                    "' (expected color, depth, normal, roughness, base, specular, f0, base_color or metallic)");
+                    "' (expected color, depth, normal, roughness, base, specular, f0, base_color, metallic or back_depth)");
 }
 
 std::string shapeText(const PipelineInputs::Shape& s) {

@@ -4,33 +4,45 @@ namespace ssrcl::detail {
 
 const StageAccess ThicknessStage::access{"thickness", {Role::Positions}, {Role::Planes}};
 
-void ThicknessStage::configure(Device::Impl& device, const TraceSettings& s) {
-  enabled_ = s.thicknessModel == ThicknessModel::Adaptive;
-  if (enabled_)
-    kernel_ = cl::Kernel(device.program({"ssrcl_shared.h", "common.cl", "surface_plane.cl", "thickness.cl"}),
-                         "surface_thickness");
+void ThicknessStage::configure(Device::Impl& device, const TraceSettings& s, bool backDepth) {
+  adaptive_ = s.thicknessModel == ThicknessModel::Adaptive;
+  backDepth_ = backDepth;
+  if (!adaptive_ && !backDepth_) return;
+  const cl::Program program = device.program({"ssrcl_shared.h", "common.cl", "surface_plane.cl", "thickness.cl"});
+  if (adaptive_) kernel_ = cl::Kernel(program, "surface_thickness");
+  if (backDepth_) known_ = cl::Kernel(program, "known_thickness");
 }
 
 void ThicknessStage::plan(DeviceBuffers& buffers, const FrameShape& frame) {
   frame_ = frame;
-  buffers.add(rowRuns_, enabled_ ? frame.pixels() * sizeof(cl_float2) : 0);
+  buffers.add(rowRuns_, adaptive_ ? frame.pixels() * sizeof(cl_float2) : 0);
+  buffers.add(back_, backDepth_ ? frame.pixels() * sizeof(float) : 0, CL_MEM_READ_ONLY);
 }
 
 void ThicknessStage::bind(const FrameResources& resources) {
-  if (enabled_)
+  if (adaptive_)
     bindArgs(kernel_, 1, "positions, row, planes", resources.read(access, Role::Positions), rowRuns_,
+             resources.write(access, Role::Planes));
+  if (backDepth_)
+    bindArgs(known_, 1, "positions, back, planes", resources.read(access, Role::Positions), back_,
              resources.write(access, Role::Planes));
 }
 
 void ThicknessStage::enqueue(cl::CommandQueue& q, const FrameConstants& frame, const TraceSettings& s,
-                             StageEvents& events) {
-  if (!enabled_) return;
-  for (cl_int axis = 0; axis < 2; ++axis) {  // rows first: the columns' pass combines both
-    const ThicknessParams p{frame, axis, s.thicknessScale, s.thicknessMinRelative, s.thicknessMaxRelative};
+                             const float* backDepth, bool orthographic, StageEvents& events) {
+  ThicknessParams p{frame, 0, s.thicknessScale, s.thicknessMinRelative, s.thicknessMaxRelative, orthographic};
+  for (cl_int axis = 0; adaptive_ && axis < 2; ++axis) {  // rows first: the columns' pass combines both
+    p.axis = axis;
     kernel_.setArg(0, p);
     q.enqueueNDRangeKernel(kernel_, cl::NullRange, cl::NDRange(roundUp(axis ? frame_.width : frame_.height, 16)),
                            cl::NDRange(16), nullptr, newEvent(events, "thickness"));
   }
+  if (!backDepth_) return;
+  q.enqueueWriteBuffer(back_, CL_FALSE, 0, frame_.pixels() * sizeof(float), backDepth, nullptr,
+                       newEvent(events, "upload"));
+  known_.setArg(0, p);
+  q.enqueueNDRangeKernel(known_, cl::NullRange, cl::NDRange(roundUp(frame_.pixels(), 64)), cl::NDRange(64),
+                         nullptr, newEvent(events, "thickness"));
 }
 
 }  // namespace ssrcl::detail

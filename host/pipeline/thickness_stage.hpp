@@ -1,7 +1,7 @@
 #pragma once
-// Adaptive surface thickness (kernels/thickness.cl): each pixel's thickness from the visible extent
-// of its surface along its row and column, applied to setup's surface planes. Runs only with
-// ThicknessModel::Adaptive.
+// Surface thickness (kernels/thickness.cl), applied to setup's surface planes: the adaptive
+// model's, from the visible extent of each pixel's surface along its row and column (with
+// ThicknessModel::Adaptive), then the exact one where a back-face depth pass knows it.
 #include "frame_resources.hpp"
 
 namespace ssrcl::detail {
@@ -10,16 +10,20 @@ class ThicknessStage {
  public:
   static const StageAccess access;
 
-  void configure(Device::Impl& device, const TraceSettings& s);
+  void configure(Device::Impl& device, const TraceSettings& s, bool backDepth);
   void plan(DeviceBuffers& buffers, const FrameShape& frame);
   void bind(const FrameResources& resources);
-  void enqueue(cl::CommandQueue& q, const FrameConstants& frame, const TraceSettings& s, StageEvents& events);
+  // `backDepth`: the planar back-face depth (0: unknown), with backDepth configured, of a camera
+  // that is `orthographic` or not.
+  void enqueue(cl::CommandQueue& q, const FrameConstants& frame, const TraceSettings& s, const float* backDepth,
+               bool orthographic, StageEvents& events);
 
  private:
-  bool enabled_ = false;
+  bool adaptive_ = false, backDepth_ = false;
   FrameShape frame_;
-  cl::Kernel kernel_;
+  cl::Kernel kernel_, known_;
   cl::Buffer rowRuns_;  // per pixel: its row run's length and chord
+  cl::Buffer back_;     // per pixel: the back-face depth
 };
 
 }  // namespace ssrcl::detail

@@ -49,7 +49,7 @@ void ViewStage::configure(Device::Impl& device, const TraceSettings& s, size_t v
   for (auto& unit : units_) {
     if (!unit) unit = std::make_unique<Unit>();
     unit->setup.configure(device);
-    unit->thickness.configure(device, s);
+    unit->thickness.configure(device, s, false);  // views have no back-face depth
     unit->hzb.configure(device);
     unit->colors.configure(device, s, false);
     unit->kernel = cl::Kernel(program_, "trace_views");
@@ -123,7 +123,7 @@ void ViewStage::prepare(cl::CommandQueue& q, std::vector<ViewSource>& views, con
                     SetupStage::params(constants, vs, colorChannels_[k]), events);
     u.hzb.enqueue(q, events);
     u.colors.reduce(q, events);
-    u.thickness.enqueue(q, constants, vs, events);
+    u.thickness.enqueue(q, constants, vs, nullptr, false, events);
     views[k].prepared = true;
   }
 }

@@ -45,6 +45,10 @@ struct FrameSource {
   // chooseOutputForm decides.
   std::optional<OutputForm> outputForm;
   std::string f0Channels, baseColorChannels, metallicChannel, materialFile;
+
+  // The back-face depth pass (GBufferSource::backDepthFile, backDepthChannel): each pixel's
+  // surface thickness where it is known (docs/inputs.md, "Back-face depth").
+  std::string backDepthFile, backDepthChannel;
 };
 
 // A frame ready for the pipeline: planar depth, world normals, the camera of its pixels.

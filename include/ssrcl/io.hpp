@@ -62,6 +62,12 @@ struct GBufferSource {
   // Full channel names, comma-separated; `materialFile` empty reads them from `file`.
   std::string f0Channels, baseColorChannels, metallicChannel;
   std::string materialFile;
+
+  // The back-face depth pass (GBuffer::backDepth), in the depth pass's kind: from `backDepthFile`
+  // when given (channel `backDepthChannel`, by default Blender's ViewLayer.Depth.Z; a deep EXR
+  // gives each pixel's first sample's ZBack), else from the depth's file where it holds the
+  // add-on's BackFaces.Depth.Z, else none.
+  std::string backDepthFile, backDepthChannel;
 };
 
 // The camera an EXR header describes, for its display window: OpenEXR's standard worldToCamera
@@ -99,6 +105,10 @@ struct GBuffer {
   Image base, specular;
   Image position;   // 3 channels, world space; only when positionChannels was given
   Image f0, baseColor, metallic;  // as read, where GBufferSource names them (3, 3, 1 channels)
+  // 1 channel, optional: the depth of the first back-facing surface behind each pixel's visible
+  // one, in the depth's kind until applyInputConventions, then planar view depth with 0 where it
+  // is unknown (NaN, negative, 1e10 and beyond, or not behind the front surface).
+  Image backDepth;
   // The EXR windows of the depth (or position) pass's file: the images cover the data window;
   // a camera describes the display window.
   PixelBox dataWindow, displayWindow;

@@ -91,6 +91,12 @@ def check_passes(exr_path):
     # The AOV is a float32 mean of identical samples inside an object: its value within 1e-6.
     found = [r for r in OBJECT_ROUGHNESS if any(abs(v - r) < 1e-6 for v in rough)]
     check(found == list(OBJECT_ROUGHNESS), "every object's roughness is in the AOV")
+    # The BackFaces layer: the first back face behind the visible surface, where the ray meets one.
+    front, back = exr.channel(LAYER + "Depth.Z"), exr.channel("BackFaces.Depth.Z")
+    known = [i for i in range(len(front)) if front[i] < 1e9 and back[i] < 1e9]
+    behind = [i for i in known if back[i] >= front[i]]
+    check(len(known) > 0.02 * len(front), "back-face depth known on %d of %d pixels" % (len(known), len(front)))
+    check(len(behind) >= 0.99 * len(known), "back-face depth behind the front on %d of %d" % (len(behind), len(known)))
     return exr
 
 
@@ -422,6 +428,8 @@ def main():
         check_sidecar(scene, exr_path, frame)
         pass_path = os.path.join(outdir, "ssrcl", "shot_%04d.exr" % frame)
         rgba = check_reflection(render, pass_path)
+        with open(pass_path, "rb") as f:  # ssrcl/inputs, in the header, names the pass it read
+            check(b'"back_depth":' in f.read(1 << 16), "ssrcl trace read the BackFaces layer")
         frames_and_passes.append((frame, pass_path))
         if frame == FRAMES[0]:
             first_rgba = rgba

@@ -68,6 +68,7 @@ struct Surfaces {
   std::vector<dvec3> point, normal;
   std::vector<double> depth;
   std::vector<double> viewCos;  // |n . v|, v the unit viewing direction of the pixel's centre
+  std::vector<double> behind;   // how far behind its plane a ray may pass and hit it, along the normal
   int index(int x, int y) const { return y * camera.width + x; }
 };
 
@@ -79,7 +80,7 @@ std::vector<CpuRay> cpuMirrorTrace(const Camera& camera, const Image& depth, con
   const size_t n = size_t(w) * h;
   const glm::dmat3 normalMatrix = glm::inverseTranspose(glm::dmat3(camera.view));
   Surfaces sf{camera, std::vector<bool>(n, false), std::vector<dvec3>(n), std::vector<dvec3>(n),
-              std::vector<double>(n, 0.0), std::vector<double>(n, 0.0)};
+              std::vector<double>(n, 0.0), std::vector<double>(n, 0.0), std::vector<double>(n, 0.0)};
   std::vector<bool> normalOk(n, false);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
@@ -96,6 +97,10 @@ std::vector<CpuRay> cpuMirrorTrace(const Camera& camera, const Image& depth, con
       const dvec2 centre(x + 0.5, y + 0.5);
       const dvec3 view = glm::normalize(pointAtDepth(camera, centre, 2.0) - pointAtDepth(camera, centre, 1.0));
       sf.viewCos[i] = std::abs(glm::dot(view, sf.normal[i]));
+      sf.behind[i] = options.thicknessRelative * d * sf.viewCos[i];
+      const double b = options.backDepth ? options.backDepth->at(x, y, 0) : 0.0;
+      if (sf.valid[i] && b > d && b < 1e10)
+        sf.behind[i] = std::abs(glm::dot(pointAtDepth(camera, centre, b) - sf.point[i], sf.normal[i]));
     }
 
   std::vector<CpuRay> rays(n);
@@ -138,7 +143,7 @@ std::vector<CpuRay> cpuMirrorTrace(const Camera& camera, const Image& depth, con
         if (g0 > 0 && g1 <= 0) {
           tHit = t0 + (t1 - t0) * (g0 / (g0 - g1));
         } else if (g0 <= 0 &&
-                   -g0 / (seg.q0.w + t0 * seg.dq.w) <= options.thicknessRelative * sf.depth[q] * sf.viewCos[q]) {
+                   -g0 / (seg.q0.w + t0 * seg.dq.w) <= sf.behind[q]) {
           tHit = t0;
         }
         if (tHit < 0) return false;

@@ -18,7 +18,9 @@
 //     where it is behind the plane by at most thickness * that pixel's depth along its viewing
 //     line (along the normal: that times |n . v|, v the pixel centre's viewing direction) at the
 //     start of the stretch; planes facing away from the ray (n . dir >= 0) are never hit, sky
-//     pixels never.
+//     pixels never. Where a back-face depth b is given and lies beyond the pixel's depth, the
+//     bound along the normal is instead the distance behind the plane of the point at planar
+//     depth b on the pixel centre's viewing line.
 //   * Stretches: EveryPixel gives each pixel the ray crosses exactly its own stretch, in order
 //     (the limit of infinitely fine linear steps); Linear takes fixed steps of `linearStepPixels`
 //     along the major screen axis and tests each step against the pixel it ends in, as the
@@ -36,6 +38,7 @@ struct CpuTraceOptions {
   Stepping stepping = Stepping::EveryPixel;
   double linearStepPixels = 0.5;
   double thicknessRelative = 0.002;  // TraceSettings::thicknessRelative (ThicknessModel::Constant)
+  const Image* backDepth = nullptr;  // planar back-face depth (GBuffer::backDepth), or none
 };
 
 struct CpuRay {

@@ -4,7 +4,7 @@ import os
 
 import bpy
 
-from . import compositor, export_camera, passes
+from . import back_faces, compositor, export_camera, passes
 from .handlers import written_frames
 from .run_ssrcl import SsrclError, sidecar_path, trace
 
@@ -15,8 +15,9 @@ def _preferences(context):
 
 class SSRCL_OT_setup(bpy.types.Operator):
     """Enable the passes ssrcl needs, roughness, base colour and metallic AOVs in every material, a
-    camera sidecar for every rendered frame, and the reflection pass traced after each render into
-    the compositor, where it replaces Glossy Direct + Indirect"""
+    back-face depth view layer (exact surface thickness, about 1% of the render), a camera sidecar
+    for every rendered frame, and the reflection pass traced after each render into the
+    compositor, where it replaces Glossy Direct + Indirect"""
     bl_idname = "ssrcl.setup"
     bl_label = "Set Up ssrcl Reflection Pass"
     bl_options = {'REGISTER', 'UNDO'}
@@ -29,13 +30,16 @@ class SSRCL_OT_setup(bpy.types.Operator):
         passes.enable_view_layer_passes(context.view_layer)
         scene.ssrcl.view_layer = context.view_layer.name
         wired = passes.wire_material_aovs(bpy.data.materials)
+        if context.view_layer.name != back_faces.LAYER:
+            back_faces.add_back_face_layer(scene)
         compositor.ensure_nodes(scene)
         scene.ssrcl.enabled = True
-        self.report({'INFO'}, "ssrcl: passes on view layer '%s'; roughness, base_color and metallic "
+        self.report({'INFO'}, "ssrcl: passes on view layer '%s', back-face depth on '%s'; "
+                    "roughness, base_color and metallic "
                     "AOVs added to %d Principled material(s), %d Glossy BSDF one(s) (metallic 1), "
                     "%d without either (roughness %g, metallic 0); the pass replaces Glossy "
                     "Direct + Indirect in the composite"
-                    % (context.view_layer.name, len(wired["principled"]), len(wired["glossy"]),
+                    % (context.view_layer.name, back_faces.LAYER, len(wired["principled"]), len(wired["glossy"]),
                        len(wired["no_lobe"]), passes.NO_LOBE_ROUGHNESS))
         if wired["skipped"]:
             self.report({'WARNING'}, "ssrcl: materials without nodes write no AOVs (ssrcl reads "

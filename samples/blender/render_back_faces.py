@@ -1,0 +1,81 @@
+"""Render the back-face depth pass of corpus scenes into separate small files (the scene EXRs stay
+as they are): <outdir>/<name>.back.exr, float Z only (ViewLayer.Depth.Z, what
+`ssrcl trace --back-depth-file` reads by default), ZIP, the scene's own camera and sample-0 jitter.
+
+    blender -b --factory-startup --python-exit-code 1 --python samples/blender/render_back_faces.py \
+        -- corpus|real <outdir> [scene names...]
+
+corpus: samples/corpus/make_corpus.py's scenes; real: samples/real/make_real_corpus.py's (needs
+its assets). No names renders every scene of that corpus; each takes a few seconds.
+"""
+import os
+import sys
+import tempfile
+import time
+
+import bpy
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+sys.path.insert(0, os.path.join(HERE, "..", "corpus"))
+sys.path.insert(0, os.path.join(HERE, "..", "real"))
+from ssrcl_addon import back_faces  # noqa: E402
+
+
+def build_scene(corpus, spec, scratch):
+    if corpus == "real":
+        import make_real_corpus
+        return make_real_corpus.build(spec, scratch, back_faces.SAMPLES)
+    import make_corpus
+    bpy.ops.wm.read_factory_settings(use_empty=False)
+    scene = bpy.context.scene
+    make_corpus.reset_scene()
+    spec["build"](scene)
+    make_corpus.configure_corpus_render(scene, back_faces.SAMPLES)
+    scene.cycles.seed = 0
+    return scene
+
+
+def render_back(corpus, spec, outdir, scratch):
+    scene = build_scene(corpus, spec, scratch)
+    # The scene's layer is kept out of the render under another name: the file's only layer is a
+    # new ViewLayer, so its channel is ViewLayer.Depth.Z.
+    main = scene.view_layers["ViewLayer"]
+    main.name, main.use = "Scene", False
+    back_faces.make_back_face_layer(scene.view_layers.new("ViewLayer"))
+    scene.cycles.transparent_max_bounces = back_faces.TRANSPARENT_BOUNCES
+    # Blender writes Combined with every layer: black (no world, no emission) it compresses away.
+    scene.world = bpy.data.worlds.new("ssrcl no world")
+    scene.world.color = (0.0, 0.0, 0.0)
+    scene.render.film_transparent = True
+    settings = scene.render.image_settings
+    settings.file_format, settings.color_depth, settings.exr_codec = 'OPEN_EXR_MULTILAYER', '32', 'ZIP'
+    path = os.path.join(outdir, spec["name"] + ".back.exr")
+    scene.render.filepath, scene.render.use_file_extension = path, False
+    start = time.perf_counter()
+    bpy.ops.render.render(write_still=True)
+    print("BACK %s: %.1f s, %d bytes" % (spec["name"], time.perf_counter() - start, os.path.getsize(path)))
+
+
+def main():
+    args = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+    if len(args) < 2 or args[0] not in ("corpus", "real"):
+        print("usage: blender -b --factory-startup --python render_back_faces.py -- corpus|real <outdir> "
+              "[scene names...]", file=sys.stderr)
+        sys.exit(2)
+    corpus, outdir = args[0], os.path.abspath(args[1])
+    module = __import__("make_real_corpus" if corpus == "real" else "make_corpus")
+    names = args[2:] or [s["name"] for s in module.SCENES]
+    unknown = [n for n in names if n not in module.SCENE_BY_NAME]
+    if unknown:
+        print("unknown scene(s): %s\nscenes: %s" % (" ".join(unknown), " ".join(module.SCENE_BY_NAME)),
+              file=sys.stderr)
+        sys.exit(2)
+    os.makedirs(outdir, exist_ok=True)
+    with tempfile.TemporaryDirectory() as scratch:  # what a real scene's build writes (its HDRI)
+        for name in names:
+            render_back(corpus, module.SCENE_BY_NAME[name], outdir, scratch)
+
+
+if __name__ == "__main__":
+    main()
