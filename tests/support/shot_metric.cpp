@@ -72,12 +72,18 @@ TemporalError temporalError(const CyclesReference& prev, const Image& passPrev, 
 }
 
 TemporalError noiseFloor(const CyclesReference& a, const CyclesReference& b) {
-  if (a.pixels != b.pixels) throw std::runtime_error("noiseFloor: the two renders' reflector pixels differ");
+  // Over the pixels both renders call reflector: object-index edges differ with the seed.
+  const Geometry gb(b);
   double se = 0;
-  for (size_t v = 0; v < a.cycles.size(); ++v) se += (a.cycles[v] - b.cycles[v]) * (a.cycles[v] - b.cycles[v]);
   TemporalError out;
-  out.pixels = a.pixels.size();
-  out.te = std::sqrt(se / double(a.cycles.size()));
+  for (size_t k = 0; k < a.pixels.size(); ++k) {
+    const int kb = gb.reflectorIndex[size_t(a.pixels[k])];
+    if (kb < 0) continue;
+    for (size_t c = 0; c < 3; ++c) se += std::pow(a.cycles[3 * k + c] - b.cycles[3 * size_t(kb) + c], 2);
+    ++out.pixels;
+  }
+  if (!out.pixels) throw std::runtime_error("noiseFloor: the two renders share no reflector pixel");
+  out.te = std::sqrt(se / (3.0 * double(out.pixels)));
   out.tpsnr = 20.0 * std::log10(a.peak / out.te);
   return out;
 }

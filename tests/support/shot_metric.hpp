@@ -27,7 +27,7 @@ TemporalError temporalError(const CyclesReference& prev, const Image& passPrev, 
                             const Image& passCur);
 
 // tPSNR of a noise-free exact answer: RMS of the difference of two references of one frame
-// (another seed), over a's reflector pixels, against a's peak.
+// (another seed), over the pixels both call reflector, against a's peak.
 TemporalError noiseFloor(const CyclesReference& a, const CyclesReference& b);
 
 // RGBA of a pass `ssrcl trace` or `ssrcl batch` wrote (R, G, B, A channels).
