@@ -10,23 +10,7 @@
 #include <iostream>
 
 #include "support/cycles_reference.hpp"
-#include "support/exr_fixtures.hpp"
-
-namespace {
-
-ssrcl::Image readReflection(const std::string& path) {
-  const ssrcl::test::ExrContents exr = ssrcl::test::readExr(path);
-  ssrcl::Image pass(exr.width, exr.height, 4);
-  const char* rgba[] = {"R", "G", "B", "A"};
-  for (int c = 0; c < 4; ++c) {
-    const auto it = exr.channels.find(rgba[c]);
-    if (it == exr.channels.end()) throw std::runtime_error(path + ": no channel " + rgba[c]);
-    for (size_t i = 0; i < it->second.values.size(); ++i) pass.data[4 * i + size_t(c)] = it->second.values[i];
-  }
-  return pass;
-}
-
-}  // namespace
+#include "support/shot_metric.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"Scores ssrcl's reflection passes against the Cycles renders they were traced from"};
@@ -43,7 +27,7 @@ int main(int argc, char** argv) {
       const std::filesystem::path pass =
           std::filesystem::path(passes) / (std::filesystem::path(render).stem().string() + ".refl.exr");
       const ssrcl::test::ReferenceError e =
-          ssrcl::test::referenceError(ref, readReflection(pass.string()), ref.groups.front().second);
+          ssrcl::test::referenceError(ref, ssrcl::test::readReflectionPass(pass.string()), ref.groups.front().second);
       std::cout << std::filesystem::path(render).filename().string() << "\t" << e.psnr << "\t" << e.lowConfidence
                 << "\n";
       sum += e.psnr;

@@ -27,6 +27,7 @@ struct BatchOptions {
   GBufferInputOptions in;
   std::vector<std::string> views, viewCameras;  // static views, shared by every frame
   int neighbours = 0;                           // frames f-K..f+K as views of frame f
+  int temporal = 0;                             // passes of frames f-K..f+K blended into frame f's
   SettingsOptions settings;
   OutputOptions out;
   // Readers and as many writers; a quarter of the cores leaves the rest to a CPU device.
@@ -66,6 +67,8 @@ int runBatch(BatchOptions& o) {
   std::unique_ptr<NeighbourWindow> neighbours;
   if (o.neighbours != 0)
     neighbours = std::make_unique<NeighbourWindow>(o.in, all, o.neighbours, static_cast<int>(o.views.size()));
+  std::unique_ptr<TemporalWindow> temporal;
+  if (o.temporal != 0) temporal = std::make_unique<TemporalWindow>(o.in, all, o.temporal, o.settings.resolve().seed);
   std::vector<FrameOutcome> outcomes(jobs.size());
   std::vector<const FrameJob*> toRun;
   for (size_t i = 0; i < jobs.size(); ++i) {
@@ -76,12 +79,13 @@ int runBatch(BatchOptions& o) {
       toRun.push_back(&jobs[i]);
   }
   OutputRecord record{o.settings.quality, o.in.applyTo(o.settings.resolve()), "", o.in.form.form,
-                      o.settings.environment, o.views};
+                      o.settings.environment, o.views, {}};
   for (size_t i = 0; i < jobs.size() && !o.dryRun; ++i)
     if (outcomes[i].status == FrameStatus::Skipped) {
       OutputRecord asked = record;
       if (neighbours)
         for (const std::string& file : neighbours->filesOf(jobs[i].input)) asked.views.push_back(file);
+      if (temporal) asked.temporal = temporal->filesOf(jobs[i].input);
       if (const std::string problem = resumeMismatch(jobs[i].output, jobs[i].input, o.out, asked); !problem.empty())
         throw Error(ErrorCode::InvalidArgument, problem);
     }
@@ -116,6 +120,7 @@ int runBatch(BatchOptions& o) {
     runner.setEnvironment(environment);
     runner.setViews(views);
     runner.setNeighbours(std::move(neighbours));
+    runner.setTemporal(std::move(temporal));
     ProgressLine progress(toRun.size(), !o.quiet);
     size_t finished = 0, failed = 0;
     run = runner.run(
@@ -170,6 +175,12 @@ Action addBatchCommand(CLI::App& app) {
                   "each with its own camera, for static geometry: hits frame f shows have moved are not taken; "
                   "each frame is read and prepared once while in the window")
       ->capture_default_str();
+  cmd->add_option("--temporal", o->temporal,
+                  "K: each frame's pass is blended with those of frames f-K..f+K, each traced with its own seed and "
+                  "read where it shows the same reflection (reprojected at the reflected point; refused where "
+                  "depth, normals or hit distance disagree); 0: each frame alone")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 64));
   cmd->add_option("--shard", o->shard,
                   "K/N: process only share K (0-based) of N, e.g. $SLURM_ARRAY_TASK_ID/$SLURM_ARRAY_TASK_COUNT")
       ->capture_default_str();

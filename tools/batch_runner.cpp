@@ -27,6 +27,7 @@ struct FrameInFlight {
   Frame frame;
   Image reflection, distance, view;  // view: with auxiliary views only
   std::vector<std::string> views;    // the files of its views, in view order
+  std::vector<std::string> temporal;  // the frames its pass was blended with (--temporal)
   bool deviceUnusable = false;  // no later frame can succeed either: stop rather than fail each
 };
 
@@ -124,6 +125,7 @@ BatchRun BatchRunner::run(const std::vector<FrameJob>& jobs, std::vector<FrameOu
           const FrameJob& job = jobs[f->index];
           OutputRecord record = record_;
           record.views = f->views;
+          record.temporal = f->temporal;
           ReflectionExrOptions written = writerOptions(output_, record, job.input, f->frame.passes, f->frame);
           if (!f->view.empty()) written.view = &f->view;
           writeReflectionExr(job.output, f->reflection, f->distance, written);
@@ -141,19 +143,29 @@ BatchRun BatchRunner::run(const std::vector<FrameJob>& jobs, std::vector<FrameOu
     }
     const bool computedOk = attempt(*f, f->outcome.computeSeconds, kExitUsage, [&] {
       const std::string& input = jobs[f->index].input;
-      if (neighbours_) neighbours_->moveTo(pipeline_, input);
-      setFrame(pipeline_, f->frame);
-      pipeline_.commit();
-      pipeline_.execute();
-      for (const auto& [stage, ms] : pipeline_.stageTimes().ms) f->outcome.deviceMs += ms;
-      f->reflection = pipeline_.output("reflection");  // copies: the pipeline reuses its outputs
-      f->distance = pipeline_.output("distance");
-      f->view = pipeline_.output("view");  // empty without views
+      if (temporal_) {
+        TemporalWindow::Pass pass = temporal_->blend(pipeline_, neighbours_.get(), input, f->frame);
+        f->outcome.deviceMs += pass.deviceMs;
+        f->reflection = std::move(pass.reflection);
+        f->distance = std::move(pass.distance);
+        f->view = std::move(pass.view);
+      } else {
+        if (neighbours_) neighbours_->moveTo(pipeline_, input);
+        setFrame(pipeline_, f->frame);
+        pipeline_.commit();
+        pipeline_.execute();
+        for (const auto& [stage, ms] : pipeline_.stageTimes().ms) f->outcome.deviceMs += ms;
+        f->reflection = pipeline_.output("reflection");  // copies: the pipeline reuses its outputs
+        f->distance = pipeline_.output("distance");
+        f->view = pipeline_.output("view");  // empty without views
+      }
       // Here, while the frame's material passes are still held: the G-buffer is released below.
       toOutputForm(input_.form, f->reflection, f->frame.gbuffer, f->frame.camera, input_.roughness);
       f->views = staticViews_;
+      if (temporal_) f->temporal = temporal_->filesOf(input);
       if (neighbours_) {
-        const std::vector<std::string> neighbours = neighbours_->files();
+        // The views this frame was traced with: with --temporal the window's last trace moved them.
+        const std::vector<std::string> neighbours = temporal_ ? neighbours_->filesOf(input) : neighbours_->files();
         f->views.insert(f->views.end(), neighbours.begin(), neighbours.end());
         Frame traced;  // its next frames' neighbour
         traced.gbuffer = std::move(f->frame.gbuffer);

@@ -6,6 +6,7 @@
 #include "batch_plan.hpp"
 #include "gbuffer_input.hpp"
 #include "neighbour_window.hpp"
+#include "temporal_window.hpp"
 #include "output_options.hpp"
 #include "ssrcl/device.hpp"
 #include "ssrcl/pipeline.hpp"
@@ -51,6 +52,8 @@ class BatchRunner {
   }
   // Each frame's neighbours in the sequence as views too (after the static ones), read as needed.
   void setNeighbours(std::unique_ptr<NeighbourWindow> neighbours) { neighbours_ = std::move(neighbours); }
+  // Each frame's pass blended with its neighbours' in the sequence (--temporal K).
+  void setTemporal(std::unique_ptr<TemporalWindow> temporal) { temporal_ = std::move(temporal); }
 
   // Processes, in order, the jobs whose outcome is NotRun and records their outcomes. Starts no
   // new frame once stopRequested() is true; the frame on the device is finished and written.
@@ -62,6 +65,7 @@ class BatchRunner {
   Pipeline pipeline_;
   std::vector<std::string> staticViews_;
   std::unique_ptr<NeighbourWindow> neighbours_;
+  std::unique_ptr<TemporalWindow> temporal_;
   GBufferInputOptions input_;
   OutputRecord record_;
   OutputOptions output_;

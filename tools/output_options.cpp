@@ -58,6 +58,7 @@ ReflectionExrOptions writerOptions(const OutputOptions& o, const OutputRecord& r
   inputs["camera"] = frame.cameraSource;
   if (!record.environment.empty()) inputs["environment"] = record.environment;
   if (!record.views.empty()) inputs["views"] = record.views;
+  if (!record.temporal.empty()) inputs["temporal"] = record.temporal;
   w.attributes = {{"ssrcl/version", SSRCL_VERSION},
                   {"ssrcl/preset", record.preset},
                   {"ssrcl/output_form", record.outputForm},

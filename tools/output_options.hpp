@@ -30,6 +30,7 @@ struct OutputRecord {
   std::string outputForm = "incident";  // --output-form
   std::string environment;              // --environment file, "" without
   std::vector<std::string> views;       // --view files
+  std::vector<std::string> temporal;    // the frames the pass was blended with (batch --temporal)
 };
 
 // The writer's options for one frame traced from `input` (the G-buffer file: appended to with

@@ -60,6 +60,15 @@ std::string resumeMismatch(const std::string& output, const std::string& input, 
     return differs(output, "views", listed(recordedViews), listed(askedViews));
   }
 
+  // The frames a pass was blended with (--temporal K), in sequence order.
+  std::vector<std::string> recordedTemporal;
+  if (recordedInputs.is_object() && recordedInputs.contains("temporal") && recordedInputs["temporal"].is_array())
+    for (const auto& v : recordedInputs["temporal"])
+      if (v.is_string()) recordedTemporal.push_back(v.get<std::string>());
+  if (recordedTemporal != asked.temporal)
+    return differs(output, "temporal frames", std::to_string(recordedTemporal.size()) + " blended",
+                   std::to_string(asked.temporal.size()));
+
   const nlohmann::ordered_json recorded = nlohmann::ordered_json::parse(*settings, nullptr, false);
   if (recorded.is_discarded() || !recorded.is_object())
     return output + ": its ssrcl/settings record is not a JSON object; give --overwrite to recompute it";

@@ -59,7 +59,7 @@ int runTrace(TraceOptions& o) {
   toOutputForm(o.in.form, reflection, frame.gbuffer, camera, o.in.roughness);
 
   OutputRecord record{o.settings.quality, pipeline.settings(), device.info().name, o.in.form.form,
-                      o.settings.environment, o.views};
+                      o.settings.environment, o.views, {}};
   record.views.insert(record.views.end(), o.neighbours.begin(), o.neighbours.end());
   ReflectionExrOptions written = writerOptions(o.out, record, mainFile, frame.passes, frame);
   if (pipeline.viewCount() > 0) written.view = &pipeline.output("view");

@@ -11,4 +11,5 @@
 #include "ssrcl/io.hpp"
 #include "ssrcl/pipeline.hpp"
 #include "ssrcl/specular_albedo.hpp"
+#include "ssrcl/temporal.hpp"
 #include "ssrcl/version.hpp"

@@ -1,0 +1,156 @@
+#include <algorithm>
+#include <cmath>
+#include <glm/glm.hpp>
+#include <string>
+#include <thread>
+
+#include "../io/conventions.hpp"
+#include "ssrcl/error.hpp"
+#include "ssrcl/temporal.hpp"
+
+namespace ssrcl {
+namespace {
+
+// Where a miss's reflected point is taken: far enough to be a direction for any camera move.
+constexpr double kMissDistance = 1e6;
+
+// A frame's pixel geometry in world space, from its depth and camera.
+struct FrameGeometry {
+  const TemporalFrame* frame;
+  glm::dmat4 inverseProjection, inverseView;
+  glm::dvec3 eye;
+
+  explicit FrameGeometry(const TemporalFrame& f)
+      : frame(&f),
+        inverseProjection(glm::inverse(f.camera.projection)),
+        inverseView(glm::inverse(f.camera.view)),
+        eye(glm::dvec3(inverseView[3])) {}
+
+  glm::dvec3 point(int x, int y) const {
+    const glm::dvec3 c = cameraPointAt(inverseProjection, frame->camera, x + 0.5, y + 0.5, frame->depth->at(x, y, 0));
+    return glm::dvec3(inverseView * glm::dvec4(c, 1.0));
+  }
+  glm::dvec3 normal(int x, int y) const {
+    const Image& n = *frame->normal;
+    const glm::dvec3 v(n.at(x, y, 0), n.at(x, y, 1), n.at(x, y, 2));
+    const double len = glm::length(v);
+    return len > 0.0 ? v / len : glm::dvec3(0.0);
+  }
+  // Screen position (pixels) and planar depth of a world point.
+  glm::dvec3 screen(const glm::dvec3& world) const {
+    return cameraToScreen(frame->camera, glm::dvec3(frame->camera.view * glm::dvec4(world, 1.0)));
+  }
+};
+
+void requireImage(const Image* image, int width, int height, int channels, const std::string& what) {
+  if (!image || image->width != width || image->height != height || image->channels != channels)
+    throw Error(ErrorCode::InvalidArgument, "temporalBlend: frame " + what + " must be " + std::to_string(width) + "x" +
+                                                std::to_string(height) + " with " + std::to_string(channels) +
+                                                " channel(s)");
+}
+
+}  // namespace
+
+void validateTemporalSettings(const TemporalSettings& s) {
+  const auto check = [](bool ok, const char* name) {
+    if (!ok) throw Error(ErrorCode::InvalidArgument, std::string("TemporalSettings::") + name + " out of range");
+  };
+  check(s.planeTolerance > 0.0f && s.planeTolerance < 1.0f, "planeTolerance");
+  check(s.maxNormalDegrees > 0.0f && s.maxNormalDegrees <= 180.0f, "maxNormalDegrees");
+  check(s.distanceTolerance > 0.0f && s.distanceTolerance < 1.0f, "distanceTolerance");
+  check(s.movedTolerance > 0.0f && s.movedTolerance < 1.0f, "movedTolerance");
+  check(s.mirrorRoughness >= 0.0f && s.mirrorRoughness <= 1.0f, "mirrorRoughness");
+  check(!s.constantRoughness || (*s.constantRoughness >= 0.0f && *s.constantRoughness <= 1.0f), "constantRoughness");
+}
+
+Image temporalBlend(const std::vector<TemporalFrame>& frames, size_t centre, const TemporalSettings& s) {
+  validateTemporalSettings(s);
+  if (centre >= frames.size()) throw Error(ErrorCode::InvalidArgument, "temporalBlend: centre is not a frame");
+  const TemporalFrame& own = frames[centre];
+  if (!own.reflection) throw Error(ErrorCode::InvalidArgument, "temporalBlend: frame reflection missing");
+  const int w = own.reflection->width, h = own.reflection->height;
+  for (const TemporalFrame& f : frames) {
+    requireImage(f.reflection, w, h, 4, "reflection");
+    requireImage(f.distance, w, h, 1, "distance");
+    requireImage(f.depth, w, h, 1, "depth");
+    requireImage(f.normal, w, h, 3, "normal");
+    if (f.roughness)
+      requireImage(f.roughness, w, h, 1, "roughness");
+    else if (!s.constantRoughness)
+      throw Error(ErrorCode::InvalidArgument, "temporalBlend: frame roughness missing");
+    if (f.camera.width != w || f.camera.height != h)
+      throw Error(ErrorCode::InvalidArgument, "temporalBlend: a frame's camera is not of its images' size");
+  }
+  std::vector<FrameGeometry> geometry;
+  for (const TemporalFrame& f : frames) geometry.emplace_back(f);
+  const FrameGeometry& g = geometry[centre];
+  const double cosNormal = std::cos(glm::radians(double(s.maxNormalDegrees)));
+
+  Image out = *own.reflection;
+  // Rows split over threads: every pixel is computed alone, so the result is the same for any split.
+  const auto blendRows = [&](int rowBegin, int rowEnd) {
+    for (int y = rowBegin; y < rowEnd; ++y)
+      for (int x = 0; x < w; ++x) {
+        const float depth = own.depth->at(x, y, 0);
+        const float roughness = own.roughness ? own.roughness->at(x, y, 0) : *s.constantRoughness;
+        if (!detail::isSurfaceDepth(depth) || roughness <= s.mirrorRoughness) continue;
+        const glm::dvec3 p = g.point(x, y), n = g.normal(x, y);
+        const glm::dvec3 view = glm::normalize(p - g.eye);
+        const double dist = own.distance->at(x, y, 0);
+        const bool miss = !(dist > 0.0);
+        // The reflected point: the hit's mirror image behind the reflector, along the viewing ray.
+        const glm::dvec3 reflected = p + view * (miss ? kMissDistance : dist);
+        // The hit itself, along the mirror direction of the pixel's normal (the lobe's centre).
+        const glm::dvec3 hit = p + glm::reflect(view, n) * dist;
+        double sum[4] = {0, 0, 0, 0}, weight = 0;
+        for (size_t j = 0; j < frames.size(); ++j) {
+          if (j == centre) continue;
+          const FrameGeometry& o = geometry[j];
+          const glm::dvec3 q = o.screen(reflected);
+          if (!(q.z > 0.0) || !std::isfinite(q.x) || !std::isfinite(q.y)) continue;
+          if (!miss) {  // the hit seen from the neighbour in front of what it shows there: moved
+            const glm::dvec3 hs = o.screen(hit);
+            const int hx = int(std::floor(hs.x)), hy = int(std::floor(hs.y));
+            if (hs.z > 0.0 && hx >= 0 && hy >= 0 && hx < w && hy < h) {
+              const float shown = frames[j].depth->at(hx, hy, 0);
+              if (detail::isSurfaceDepth(shown) && hs.z < shown * (1.0 - s.movedTolerance)) continue;
+            }
+          }
+          // Bilinear over the four pixel centres around q, each tap tested on its own.
+          const double fx = q.x - 0.5, fy = q.y - 0.5;
+          const int x0 = int(std::floor(fx)), y0 = int(std::floor(fy));
+          const double tx = fx - x0, ty = fy - y0;
+          for (int k = 0; k < 4; ++k) {
+            const int sx = x0 + (k & 1), sy = y0 + (k >> 1);
+            if (sx < 0 || sy < 0 || sx >= w || sy >= h) continue;
+            const double bilinear = ((k & 1) ? tx : 1 - tx) * ((k >> 1) ? ty : 1 - ty);
+            if (bilinear <= 0.0 || !detail::isSurfaceDepth(frames[j].depth->at(sx, sy, 0))) continue;
+            const glm::dvec3 ps = o.point(sx, sy), ns = o.normal(sx, sy);
+            if (glm::dot(n, ns) < cosNormal) continue;
+            if (std::abs(glm::dot(ps - p, glm::normalize(n + ns))) > s.planeTolerance * depth) continue;
+            const double ds = frames[j].distance->at(sx, sy, 0);
+            double match = 1.0;
+            if (miss != !(ds > 0.0)) continue;
+            if (!miss) {  // its hit distance against the distance from it to the reflected point
+              const double expected = glm::length(reflected - ps);
+              const double e = std::abs(ds - expected) / (s.distanceTolerance * expected);
+              if (e >= 1.0) continue;
+              match = (1.0 - e) * (1.0 - e);
+            }
+            const double wk = bilinear * match;
+            for (int c = 0; c < 4; ++c) sum[c] += wk * frames[j].reflection->at(sx, sy, c);
+            weight += wk;
+          }
+        }
+        if (weight <= 0.0) continue;
+        for (int c = 0; c < 4; ++c) out.at(x, y, c) = float((own.reflection->at(x, y, c) + sum[c]) / (1.0 + weight));
+      }
+  };
+  const int threads = int(std::clamp(std::thread::hardware_concurrency(), 1u, 16u));
+  std::vector<std::thread> pool;
+  for (int t = 0; t < threads; ++t) pool.emplace_back(blendRows, h * t / threads, h * (t + 1) / threads);
+  for (std::thread& t : pool) t.join();
+  return out;
+}
+
+}  // namespace ssrcl

@@ -1,0 +1,49 @@
+#pragma once
+// Temporal reuse over a shot: a frame's reflection pass averaged with its neighbours' (frames
+// before and after, each traced alone with its own seed), each neighbour read where it shows the
+// same reflection. An offline tool has every frame's exact camera and depth, so the reuse is a
+// reprojection, not a guess from motion vectors.
+//
+// Where a neighbour shows the same reflection: the reflected point (the hit's mirror image
+// behind the reflector, at the pass's hit distance along the viewing ray: fixed in the world for
+// a planar reflector, whichever camera looks) is projected into the neighbour. Each of the four
+// pixels around it is taken when it lies on the frame pixel's tangent plane, its normal is within
+// maxNormalDegrees, and its own hit distance matches the distance from it to the reflected point;
+// and refused when the frame's hit, seen from the neighbour, is in front of what the neighbour
+// shows there (the object has moved). Weights fall with the hit-distance mismatch.
+#include <optional>
+#include <vector>
+
+#include "ssrcl/camera.hpp"
+#include "ssrcl/image.hpp"
+
+namespace ssrcl {
+
+// One traced frame of the window: its pipeline outputs and G-buffer (same size), not owned.
+struct TemporalFrame {
+  const Image* reflection = nullptr;  // 4 channels, the pipeline's "reflection" (incident form)
+  const Image* distance = nullptr;    // 1 channel, the pipeline's "distance" (0: no hit)
+  const Image* depth = nullptr;       // 1 channel, planar view depth (as Pipeline reads it)
+  const Image* normal = nullptr;      // 3 channels, world space
+  const Image* roughness = nullptr;   // 1 channel; nullptr: constantRoughness
+  Camera camera;
+};
+
+struct TemporalSettings {
+  float planeTolerance = 0.02f;            // off the tangent plane by more than this share of depth: refused
+  float maxNormalDegrees = 45.0f;          // normals further apart: refused
+  float distanceTolerance = 0.2f;          // hit distance off by more than this share: refused
+  float movedTolerance = 0.02f;            // the hit this share of depth in front of the neighbour's surface: moved
+  float mirrorRoughness = 0.02f;           // pixels at or below keep their own pass (sharp, no noise)
+  std::optional<float> constantRoughness;  // every pixel's roughness where frames have no image
+};
+// Throws Error(InvalidArgument) naming the first setting out of range.
+void validateTemporalSettings(const TemporalSettings& settings);
+
+// The reflection of frames[centre] blended with the other frames: per pixel the weighted mean of
+// its own pass (weight 1) and every neighbour's accepted pixels (bilinear weight times the
+// distance-mismatch weight). Same inputs, same output, whatever the thread count. Throws
+// Error(InvalidArgument) for frames of different sizes or missing images.
+Image temporalBlend(const std::vector<TemporalFrame>& frames, size_t centre, const TemporalSettings& settings);
+
+}  // namespace ssrcl

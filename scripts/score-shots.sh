@@ -1,0 +1,39 @@
+#!/usr/bin/env bash
+# Runs `ssrcl batch` over the shots scripts/render-shots.sh rendered, in every configuration below,
+# and scores them (bench/score_shots.cpp): mean per-frame PSNR and tPSNR per shot, frames/s, EEVEE
+# and the references' noise floor.
+#   bash scripts/score-shots.sh [shots dir] [config ...]      (default out/shots, every config)
+#   SSRCL_SHOTS=living_truck,deck_pan bash scripts/score-shots.sh    (only these shots)
+# Passes go to out/shot-passes/<config>/<shot>/, reports to out/shot-passes/<config>/<shot>.json.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+shots=${1:-out/shots}
+shift || true
+build=${SSRCL_BUILD:-build}
+passes=${SSRCL_SHOT_PASSES:-out/shot-passes}
+declare -A args=(
+  [draft]="--quality draft --temporal 0"
+  [medium]="--quality medium --temporal 0"
+  [high]="--quality high --temporal 0"
+  [medium-t5]="--quality medium --temporal 5"
+  [draft-t5]="--quality draft --temporal 5"
+  [high-t5]="--quality high --temporal 5"
+)
+configs=("$@")
+[ ${#configs[@]} -gt 0 ] || configs=(draft medium high draft-t5 medium-t5 high-t5)
+names=${SSRCL_SHOTS:-}
+names=${names//,/ }
+[ -n "$names" ] || names=$(python3 -c 'import json,sys; print(" ".join(s["name"] for s in json.load(open(sys.argv[1]))["shots"]))' "$shots/shots.json")
+for c in "${configs[@]}"; do
+  for s in $names; do
+    env=$(python3 -c 'import json,sys; e=[x for x in json.load(open(sys.argv[1]))["shots"] if x["name"]==sys.argv[2]][0].get("environment"); print(e or "")' "$shots/shots.json" "$s")
+    extra=()
+    [ -z "$env" ] || extra=(--environment "$shots/$s/$env")
+    # shellcheck disable=SC2086
+    "$build/ssrcl" batch "$shots/$s/$s.####.exr" -o "$passes/$c/$s/" --output-form glossy-pass ${args[$c]} \
+      "${extra[@]}" --overwrite -q --report "$passes/$c/$s.json"
+  done
+done
+list=$(IFS=,; echo "${configs[*]}")
+"$build/bench/ssrcl_score_shots" --shots "$shots" --passes "$passes" --configs "$list,eevee" \
+  --shot "$(echo $names | tr ' ' ',')" --json "$passes/scores.json"

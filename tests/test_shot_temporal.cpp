@@ -1,0 +1,100 @@
+// The CI subset of the shot corpus (samples/real/shot_ci: the first frames of living_truck, the
+// whole shots are scored by bench/score_shots, docs/BENCHMARKS.md "Shots"): `ssrcl batch
+// --temporal` against each frame alone, per frame and over time (tests/support/shot_metric.hpp)
+// against the Cycles references; and its determinism: shards and a resumed run equal the whole
+// run bit for bit. Bounds sit under the figures measured on PoCL (in comments).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <iostream>
+
+#include "support/exr_fixtures.hpp"
+#include "support/run_command.hpp"
+#include "support/shot_metric.hpp"
+#include "support/temp_dir.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using ssrcl::test::runCommand;
+using ssrcl::test::shellQuote;
+
+const std::string kShot = std::string(SSRCL_SOURCE_DIR) + "/samples/real/shot_ci/";
+constexpr int kFrames = 3;
+
+std::string stem(int frame) {
+  char name[32];
+  std::snprintf(name, sizeof name, "living_truck.%04d", frame);
+  return name;
+}
+
+std::string batch(const std::string& out, const std::string& options) {
+  return shellQuote(SSRCL_CLI) + " batch " + shellQuote(kShot + "living_truck.####.exr") + " -o " +
+         shellQuote(out + "/") + " --output-form glossy-pass -q " + options;
+}
+
+struct ShotScore {
+  double psnr = 0, tpsnr = 0;  // means over the frames, over the pairs
+};
+
+ShotScore score(const std::string& passes) {
+  std::vector<ssrcl::test::CyclesReference> refs;
+  std::vector<ssrcl::Image> pass;
+  for (int f = 1; f <= kFrames; ++f) {
+    refs.push_back(ssrcl::test::loadCyclesReference(kShot + stem(f) + ".exr"));
+    std::fill(refs.back().scale.begin(), refs.back().scale.end(), 1.0);  // glossy-pass form
+    pass.push_back(ssrcl::test::readReflectionPass(passes + "/" + stem(f) + ".refl.exr"));
+  }
+  ShotScore s;
+  for (size_t t = 0; t < refs.size(); ++t) {
+    s.psnr += ssrcl::test::referenceError(refs[t], pass[t], refs[t].groups.front().second).psnr / kFrames;
+    if (t) s.tpsnr += ssrcl::test::temporalError(refs[t - 1], pass[t - 1], refs[t], pass[t]).tpsnr / (kFrames - 1);
+  }
+  return s;
+}
+
+// Every channel's values of every output of `dir`.
+std::map<std::string, std::map<std::string, std::vector<float>>> outputs(const std::string& dir) {
+  std::map<std::string, std::map<std::string, std::vector<float>>> all;
+  for (int f = 1; f <= kFrames; ++f) {
+    const ssrcl::test::ExrContents exr = ssrcl::test::readExr(dir + "/" + stem(f) + ".refl.exr");
+    for (const auto& [name, channel] : exr.channels) all[stem(f)][name] = channel.values;
+  }
+  return all;
+}
+
+TEST(ShotTemporal, BlendHoldsStillAndBeatsEachFrameAlone) {
+  ssrcl::test::TempDir dir("ssrcl-shot-temporal");
+  const auto alone = runCommand(batch(dir.file("alone"), "--temporal 0"));
+  ASSERT_EQ(alone.exitCode, 0) << alone.output;
+  const auto blended = runCommand(batch(dir.file("blended"), "--temporal 2"));
+  ASSERT_EQ(blended.exitCode, 0) << blended.output;
+  const ShotScore a = score(dir.file("alone")), b = score(dir.file("blended"));
+  std::cout << "alone: PSNR " << a.psnr << " tPSNR " << a.tpsnr << "; --temporal 2: PSNR " << b.psnr << " tPSNR "
+            << b.tpsnr << "\n";
+  EXPECT_GT(b.tpsnr, a.tpsnr + 0.4);  // measured +0.74 dB (26.42 -> 27.16)
+  EXPECT_GT(b.psnr, a.psnr - 0.1);    // measured +0.003 dB (17.64)
+}
+
+TEST(ShotTemporal, ShardsAndResumeEqualTheWholeRun) {
+  ssrcl::test::TempDir dir("ssrcl-shot-shards");
+  const std::string whole = dir.file("whole"), sharded = dir.file("sharded");
+  ASSERT_EQ(runCommand(batch(whole, "--temporal 1")).exitCode, 0);
+  for (const char* shard : {"0/3", "1/3", "2/3"}) {
+    const auto r = runCommand(batch(sharded, std::string("--temporal 1 --shard ") + shard));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+  }
+  const auto expected = outputs(whole);
+  EXPECT_EQ(outputs(sharded), expected);
+  // A resumed run traces the missing frame's window again (its neighbours are outputs already).
+  fs::remove(whole + "/" + stem(3) + ".refl.exr");
+  const auto resumed = runCommand(batch(whole, "--temporal 1"));
+  ASSERT_EQ(resumed.exitCode, 0) << resumed.output;
+  EXPECT_EQ(outputs(whole), expected);
+  // Another window is another input: resuming with it refuses the outputs.
+  const auto other = runCommand(batch(whole, "--temporal 2"));
+  EXPECT_EQ(other.exitCode, 2) << other.output;
+  EXPECT_NE(other.output.find("temporal frames"), std::string::npos) << other.output;
+}
+
+}  // namespace

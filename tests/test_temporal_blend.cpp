@@ -1,0 +1,131 @@
+// ssrcl::temporalBlend against an analytic shot: a glossy floor (y = 0) under a textured ceiling
+// (y = H), a camera trucking sideways. Each frame's "pass" is the ceiling's exact colour where the
+// floor pixel's mirror ray meets it, plus independent noise; its hit distance is exact. Blending
+// must find each neighbour where it reflects the same ceiling point (the reflected point), so
+// the blend's error against the exact colour falls as the noise averages; it must refuse
+// neighbours whose hit distances disagree, and leave mirror pixels alone.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <glm/glm.hpp>
+
+#include "ssrcl/error.hpp"
+#include "ssrcl/temporal.hpp"
+#include "support/simple_camera.hpp"
+
+namespace {
+
+constexpr int kW = 96, kH = 64;
+constexpr double kCeiling = 2.0;
+
+double texture(double x, double z) { return 0.5 + 0.25 * std::sin(1.3 * x) * std::cos(0.9 * z); }
+
+// Deterministic noise in [-0.5, 0.5) per frame and pixel.
+double noise(int frame, int pixel, int channel) {
+  uint32_t h = uint32_t(frame) * 0x9e3779b9u ^ uint32_t(pixel) * 0x85ebca6bu ^ uint32_t(channel) * 0xc2b2ae35u;
+  h ^= h >> 16, h *= 0x7feb352du, h ^= h >> 15, h *= 0x846ca68bu, h ^= h >> 16;
+  return double(h) / 4294967296.0 - 0.5;
+}
+
+struct AnalyticFrame {
+  ssrcl::Image reflection{kW, kH, 4}, distance{kW, kH, 1}, depth{kW, kH, 1}, normal{kW, kH, 3}, roughness{kW, kH, 1};
+  ssrcl::Image truth{kW, kH, 1};  // the ceiling's colour each floor pixel reflects
+  ssrcl::Camera camera;
+};
+
+// Frame `f` of the truck: the camera 0.15 units along x a frame; `ceiling`: where its hits are.
+AnalyticFrame makeFrame(int f, double noiseAmplitude, double ceiling = kCeiling, float roughness = 0.3f) {
+  AnalyticFrame a;
+  const glm::dvec3 eye(0.15 * f, 1.0, 4.0);
+  a.camera = ssrcl::test::perspectiveCamera(kW, kH, eye, eye + glm::dvec3(0, -0.6, -1), 60.0);
+  const glm::dmat4 inverseProjection = glm::inverse(a.camera.projection), inverseView = glm::inverse(a.camera.view);
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      const glm::dvec3 c = ssrcl::cameraPointAt(inverseProjection, a.camera, x + 0.5, y + 0.5, 1.0);
+      const glm::dvec3 dir = glm::normalize(glm::dvec3(inverseView * glm::dvec4(c, 0.0)));
+      a.depth.at(x, y, 0) = 1e10f;  // sky unless the ray meets the floor
+      if (dir.y >= -1e-3) continue;
+      const glm::dvec3 p = eye + dir * (-eye.y / dir.y);
+      a.depth.at(x, y, 0) = float(-(a.camera.view * glm::dvec4(p, 1.0)).z);
+      a.normal.at(x, y, 1) = 1.0f;
+      a.roughness.at(x, y, 0) = roughness;
+      const glm::dvec3 r(dir.x, -dir.y, dir.z);
+      const double d = ceiling / r.y;
+      const glm::dvec3 hit = p + r * d;
+      a.distance.at(x, y, 0) = float(d);
+      a.truth.at(x, y, 0) = float(texture(hit.x, hit.z));
+      for (int ch = 0; ch < 3; ++ch)
+        a.reflection.at(x, y, ch) = float(a.truth.at(x, y, 0) + noiseAmplitude * noise(f, y * kW + x, ch));
+      a.reflection.at(x, y, 3) = 1.0f;
+    }
+  return a;
+}
+
+std::vector<ssrcl::TemporalFrame> window(const std::vector<AnalyticFrame>& frames) {
+  std::vector<ssrcl::TemporalFrame> out;
+  for (const AnalyticFrame& a : frames)
+    out.push_back({&a.reflection, &a.distance, &a.depth, &a.normal, &a.roughness, a.camera});
+  return out;
+}
+
+// RMS of the pass's colour against the truth over the floor pixels the camera sees.
+double rmsError(const ssrcl::Image& pass, const AnalyticFrame& a) {
+  double se = 0;
+  size_t n = 0;
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x)
+      if (a.depth.at(x, y, 0) < 1e9f)
+        for (int c = 0; c < 3; ++c, ++n) se += std::pow(pass.at(x, y, c) - a.truth.at(x, y, 0), 2);
+  return std::sqrt(se / double(n));
+}
+
+TEST(TemporalBlend, AveragesNoiseAtTheReflectedPoint) {
+  std::vector<AnalyticFrame> frames;
+  for (int f = -3; f <= 3; ++f) frames.push_back(makeFrame(f, 0.2));
+  const ssrcl::Image blended = ssrcl::temporalBlend(window(frames), 3, {});
+  const double own = rmsError(frames[3].reflection, frames[3]), blend = rmsError(blended, frames[3]);
+  std::cout << "RMS error against the exact ceiling: own " << own << ", blended over 7 frames " << blend << "\n";
+  // 7 frames of independent noise: sqrt(7) = 2.6 less where all are found (fewer at the edges).
+  EXPECT_LT(blend, own / 2.0);
+  // Noise-free frames: the blend reads the same ceiling point in every neighbour, so it only adds
+  // bilinear interpolation error, a small part of what the same pixels of the neighbours (no
+  // reprojection: each shows another ceiling point) are off.
+  // The shot's first frame: its neighbours all to one side, where the first-order shifts of a
+  // symmetric window would cancel.
+  std::vector<AnalyticFrame> clean;
+  for (int f = 0; f <= 6; ++f) clean.push_back(makeFrame(f, 0.0));
+  ssrcl::Image samePixel(kW, kH, 4);
+  for (const AnalyticFrame& a : clean)
+    for (size_t v = 0; v < samePixel.data.size(); ++v) samePixel.data[v] += a.reflection.data[v] / float(clean.size());
+  const double reprojected = rmsError(ssrcl::temporalBlend(window(clean), 0, {}), clean[0]);
+  const double unmoved = rmsError(samePixel, clean[0]);
+  std::cout << "noise-free: blended " << reprojected << ", same pixels averaged " << unmoved << "\n";
+  EXPECT_LT(reprojected, 0.01);
+  EXPECT_LT(reprojected, unmoved / 5);
+}
+
+TEST(TemporalBlend, RefusesNeighboursWhoseHitsDisagree) {
+  // Neighbours' hits on a ceiling 50% higher: their hit distances are 50% off, every one refused.
+  std::vector<AnalyticFrame> frames;
+  for (int f = -2; f <= 2; ++f) frames.push_back(makeFrame(f, 0.2, f == 0 ? kCeiling : 1.5 * kCeiling));
+  const ssrcl::Image blended = ssrcl::temporalBlend(window(frames), 2, {});
+  EXPECT_EQ(blended.data, frames[2].reflection.data);
+}
+
+TEST(TemporalBlend, MirrorPixelsKeepTheirOwnPass) {
+  std::vector<AnalyticFrame> frames;
+  for (int f = -1; f <= 1; ++f) frames.push_back(makeFrame(f, 0.2, kCeiling, 0.01f));
+  EXPECT_EQ(ssrcl::temporalBlend(window(frames), 1, {}).data, frames[1].reflection.data);
+}
+
+TEST(TemporalBlend, RejectsFramesOfAnotherSize) {
+  std::vector<AnalyticFrame> frames;
+  for (int f = 0; f < 2; ++f) frames.push_back(makeFrame(f, 0.2));
+  frames[1].distance = ssrcl::Image(kW / 2, kH, 1);
+  EXPECT_THROW(ssrcl::temporalBlend(window(frames), 0, {}), ssrcl::Error);
+  ssrcl::TemporalSettings bad;
+  bad.distanceTolerance = 0.0f;
+  EXPECT_THROW(ssrcl::temporalBlend(window(frames), 0, bad), ssrcl::Error);
+}
+
+}  // namespace
