@@ -183,8 +183,15 @@ inline float8 gather8(__global const float* a, int8 i) {
   return (float8)(a[i.s0], a[i.s1], a[i.s2], a[i.s3], a[i.s4], a[i.s5], a[i.s6], a[i.s7]);
 }
 
-inline int8 gather8i(__global const int* a, int8 i) {
-  return (int8)(a[i.s0], a[i.s1], a[i.s2], a[i.s3], a[i.s4], a[i.s5], a[i.s6], a[i.s7]);
+// Eight float4 records as four float8s: one vector load a record, then shuffles (a load per float
+// cost a quarter more per step).
+inline float8 gather8_xyzw(__global const float4* a, int8 i, float8* y, float8* z, float8* w) {
+  float4 v0 = a[i.s0], v1 = a[i.s1], v2 = a[i.s2], v3 = a[i.s3], v4 = a[i.s4], v5 = a[i.s5], v6 = a[i.s6],
+         v7 = a[i.s7];
+  *y = (float8)(v0.y, v1.y, v2.y, v3.y, v4.y, v5.y, v6.y, v7.y);
+  *z = (float8)(v0.z, v1.z, v2.z, v3.z, v4.z, v5.z, v6.z, v7.z);
+  *w = (float8)(v0.w, v1.w, v2.w, v3.w, v4.w, v5.w, v6.w, v7.w);
+  return (float8)(v0.x, v1.x, v2.x, v3.x, v4.x, v5.x, v6.x, v7.x);
 }
 
 // cell_exit per lane.
@@ -219,10 +226,9 @@ inline float8 plane_side8(const ScreenRays8* r, float8 t, float8 px, float8 py, 
 inline float8 hit_pixel8(const TraceScene* sc, const ScreenRays8* r, float8 dx, float8 dy, float8 dz, int8 cx,
                          int8 cy, float8 t_in, float8 t_out, int8 lanes, int8* in_front, int8* seen, int8* behind,
                          int8* thick) {
-  int8 q = 4 * (clamp(cy, 0, sc->size.y - 1) * sc->size.x + clamp(cx, 0, sc->size.x - 1));
-  __global const float* planes = (__global const float*)sc->planes;
-  float8 px = gather8(planes, q), py = gather8(planes, q + 1), pz = gather8(planes, q + 2),
-         pw = gather8(planes, q + 3);
+  int8 q = clamp(cy, 0, sc->size.y - 1) * sc->size.x + clamp(cx, 0, sc->size.x - 1);
+  float8 py, pz, pw;
+  float8 px = gather8_xyzw(sc->planes, q, &py, &pz, &pw);
   int8 sky = pw == -INFINITY;  // SSRCL_NO_PLANE
   float8 g_in = plane_side8(r, t_in, px, py, pz, pw), g_out = plane_side8(r, t_out, px, py, pz, pw);
   *in_front = sky | (g_out > 0.0f);
@@ -257,7 +263,7 @@ inline void trace_hiz_lanes(TraceScene* sc, const ScreenRay* rays, const float3*
   int8 iterations = vload8(0, lane_iterations), fetches = 0;
   int8 seen = vload8(0, lane_seen) != 0, behind = 0, thick = 0;
   const int top = sc->level_count - 1;
-  __global const int* levels = (__global const int*)sc->levels;  // HzbLevel: offset, width, height, pad
+  __global const float4* levels = (__global const float4*)sc->levels;  // HzbLevel: 4 ints, read as bits
 
   float8 nudge = 0.01f / fmax(fabs(r.dsx), fabs(r.dsy));
   int8 deeper = r.q0z * r.dqw - r.dqz * r.q0w > 0.0f;
@@ -271,19 +277,23 @@ inline void trace_hiz_lanes(TraceScene* sc, const ScreenRay* rays, const float3*
     if (!any(active)) break;
     float8 t_exit = cell_exit8(&r, t, nudge, convert_float8((int8)(1) << mip), &cx, &cy);
     int8 fine = active & (mip == 0);
-    int8 in_front;
-    float8 t_pixel = hit_pixel8(sc, &r, dx, dy, dz, cx, cy, t, fmin(t_exit, 1.0f), fine, &in_front, &seen, &behind,
-                                &thick);
-    int8 hit = fine & (t_pixel >= 0.0f);
-    t_hit = select(t_hit, t_pixel, hit);
-    hit_x = select(hit_x, cx, hit);
-    hit_y = select(hit_y, cy, hit);
-
-    int8 l4 = 4 * mip;
-    int8 l_width = gather8i(levels, l4 + 1);
-    int8 texel = gather8i(levels, l4) + clamp(cy, 0, gather8i(levels, l4 + 2) - 1) * l_width +
-                 clamp(cx, 0, l_width - 1);
-    float8 d_min = gather8(sc->hzb, texel);
+    // Each side's texels are read only where a lane needs them.
+    int8 in_front = 0, hit = 0;
+    if (any(fine)) {
+      float8 t_pixel = hit_pixel8(sc, &r, dx, dy, dz, cx, cy, t, fmin(t_exit, 1.0f), fine, &in_front, &seen, &behind,
+                                  &thick);
+      hit = fine & (t_pixel >= 0.0f);
+      t_hit = select(t_hit, t_pixel, hit);
+      hit_x = select(hit_x, cx, hit);
+      hit_y = select(hit_y, cy, hit);
+    }
+    float8 d_min = 0.0f;
+    if (!all(fine | ~active)) {
+      float8 l_width, l_height, unused;
+      int8 l_offset = as_int8(gather8_xyzw(levels, mip, &l_width, &l_height, &unused));
+      int8 width = as_int8(l_width);
+      d_min = gather8(sc->hzb, l_offset + clamp(cy, 0, as_int8(l_height) - 1) * width + clamp(cx, 0, width - 1));
+    }
     int8 front = -(r.q0z + t * r.dqz) / (r.q0w + t * r.dqw) < d_min;
     float8 denom = r.dqz + d_min * r.dqw;
     float8 t_cross = -(r.q0z + d_min * r.q0w) / denom;
