@@ -525,139 +525,145 @@ __kernel void trace_rays(TraceParams params, __global const float* hzb, __global
   const float mirror_roughness = params.mirror_roughness, edge_fade = params.edge_fade;
   const int batch_size = params.batch_size, level_count = params.level_count;
   const uint seed = params.seed;
-  // SSRCL_TRACE_LANES consecutive rays per work-item: made one by one, traced together in lanes
-  // (Hi-Z), then shaded one by one.
-  const int first = (int)get_global_id(0) * SSRCL_TRACE_LANES;
-  PixelRay lane[SSRCL_TRACE_LANES];
-  TraceScene scene[SSRCL_TRACE_LANES];
-  ScreenRay lane_ray[SSRCL_TRACE_LANES];
-  float3 lane_dir[SSRCL_TRACE_LANES];
-  int lane_live[SSRCL_TRACE_LANES];  // a screen ray to trace
-  float lane_t[SSRCL_TRACE_LANES];
-  int2 lane_cell[SSRCL_TRACE_LANES];
-  for (int k = 0; k < SSRCL_TRACE_LANES; ++k) {
-    const ScreenRay none = {(float2)(0.0f), (float2)(0.0f), (float4)(0.0f), (float4)(0.0f)};
-    const TraceScene sc = {size, hzb, levels, level_count, planes, normals, params.max_iterations, 0, 0};
-    scene[k] = sc;  // every lane's: trace_hiz_lanes reads the frame from scene[0]
-    lane[k].traced = lane_live[k] = 0;
-    lane_ray[k] = none;  // lanes without a ray are traced too, their results unused
-    lane_dir[k] = (float3)(0.0f);
-    lane_t[k] = -1.0f;
-    int gid = first + k;
-    if (gid >= params.listed * batch_size) continue;
-    int i = ray_list[gid / batch_size];
-    int slot = gid % batch_size;
-    int sample = params.first_sample + slot;
-    if (sample >= pixel_rays[i]) continue;
-    size_t record = (size_t)i * batch_size + slot;
-    ray_hit[record] = (float4)(0.0f, 0.0f, 0.0f, -1.0f);
-    ray_radiance[record] = (float4)(0.0f);
+  // The rays of SSRCL_TRACE_LANES listed pixels per work-item, in rounds of up to SSRCL_TRACE_LANES:
+  // made one by one (skipping the slots a pixel has no ray in, so lanes stay full where pixels have
+  // one ray, as mirror pixels do), traced together in lanes (Hi-Z), then shaded one by one.
+  const int end = min(((int)get_global_id(0) + 1) * SSRCL_TRACE_LANES, params.listed) * batch_size;
+  int next = (int)get_global_id(0) * SSRCL_TRACE_LANES * batch_size;
+  while (next < end) {
+    PixelRay lane[SSRCL_TRACE_LANES];
+    TraceScene scene[SSRCL_TRACE_LANES];
+    ScreenRay lane_ray[SSRCL_TRACE_LANES];
+    float3 lane_dir[SSRCL_TRACE_LANES];
+    int lane_live[SSRCL_TRACE_LANES];  // a screen ray to trace
+    float lane_t[SSRCL_TRACE_LANES];
+    int2 lane_cell[SSRCL_TRACE_LANES];
+    for (int k = 0; k < SSRCL_TRACE_LANES; ++k) {
+      const ScreenRay none = {(float2)(0.0f), (float2)(0.0f), (float4)(0.0f), (float4)(0.0f)};
+      const TraceScene sc = {size, hzb, levels, level_count, planes, normals, params.max_iterations, 0, 0};
+      scene[k] = sc;  // every lane's: trace_hiz_lanes reads the frame from scene[0]
+      lane[k].traced = lane_live[k] = 0;
+      lane_ray[k] = none;  // lanes without a ray are traced too, their results unused
+      lane_dir[k] = (float3)(0.0f);
+      lane_t[k] = -1.0f;
+    }
+    for (int k = 0; k < SSRCL_TRACE_LANES && next < end;) {
+      int gid = next++;
+      int i = ray_list[gid / batch_size];
+      int slot = gid % batch_size;
+      int sample = params.first_sample + slot;
+      if (sample >= pixel_rays[i]) continue;
+      size_t record = (size_t)i * batch_size + slot;
+      ray_hit[record] = (float4)(0.0f, 0.0f, 0.0f, -1.0f);
+      ray_radiance[record] = (float4)(0.0f);
 #if SSRCL_VIEWS
-    ray_state[record] = 0;
+      ray_state[record] = 0;
 #endif
 
-    float4 nr = normals[i];
-    float3 n = nr.xyz;
-    float3 v;
-    float3 p = pixel_view_point(inv_proj, size, (int2)(i % size.x, i / size.x), positions[i].w, &v);
-    float3 o = -v;
-    if (dot(o, n) <= 0.0f) continue;  // normal faces away from the viewer: no defined reflection
+      float4 nr = normals[i];
+      float3 n = nr.xyz;
+      float3 v;
+      float3 p = pixel_view_point(inv_proj, size, (int2)(i % size.x, i / size.x), positions[i].w, &v);
+      float3 o = -v;
+      if (dot(o, n) <= 0.0f) continue;  // normal faces away from the viewer: no defined reflection
 
-    // Mirror-like pixels have one ray, the exact mirror direction.
-    bool mirror = nr.w <= mirror_roughness;
-    float alpha = fmax(roughness_to_alpha(nr.w, SSRCL_ROUGHNESS_MAPPING), 1e-4f);
-    float pdf;
-    float3 dir = sample_reflection(o, n, mirror, alpha, sample_2d(i, sample, seed), &pdf);
-    if (!(dot(dir, dir) > 0.0f)) continue;
-    ray_hit[record] = (float4)(dir, -1.0f);
-    ray_radiance[record] = (float4)(0.0f, 0.0f, 0.0f, pdf);
+      // Mirror-like pixels have one ray, the exact mirror direction.
+      bool mirror = nr.w <= mirror_roughness;
+      float alpha = fmax(roughness_to_alpha(nr.w, SSRCL_ROUGHNESS_MAPPING), 1e-4f);
+      float pdf;
+      float3 dir = sample_reflection(o, n, mirror, alpha, sample_2d(i, sample, seed), &pdf);
+      if (!(dot(dir, dir) > 0.0f)) continue;
+      ray_hit[record] = (float4)(dir, -1.0f);
+      ray_radiance[record] = (float4)(0.0f, 0.0f, 0.0f, pdf);
 
-    PixelRay made = {gid, sample, record, p, pdf, alpha, mirror, 1};
-    lane[k] = made;
-    lane_dir[k] = dir;
-    lane_live[k] = ray_from(proj, size, near_plane, far_plane, p, dir, &lane_ray[k]);
-  }
+      PixelRay made = {gid, sample, record, p, pdf, alpha, mirror, 1};
+      lane[k] = made;
+      lane_dir[k] = dir;
+      lane_live[k] = ray_from(proj, size, near_plane, far_plane, p, dir, &lane_ray[k]);
+      ++k;
+    }
 #if SSRCL_TRACER == SSRCL_TRACER_HIZ
-  trace_hiz_lanes(scene, lane_ray, lane_dir, lane_live, lane_t, lane_cell);
+    trace_hiz_lanes(scene, lane_ray, lane_dir, lane_live, lane_t, lane_cell);
 #else
-  for (int k = 0; k < SSRCL_TRACE_LANES; ++k)
-    if (lane_live[k]) lane_t[k] = trace_ray(&scene[k], linear_step, &lane_ray[k], lane_dir[k], &lane_cell[k]);
+    for (int k = 0; k < SSRCL_TRACE_LANES; ++k)
+      if (lane_live[k]) lane_t[k] = trace_ray(&scene[k], linear_step, &lane_ray[k], lane_dir[k], &lane_cell[k]);
 #endif
 
-  for (int k = 0; k < SSRCL_TRACE_LANES; ++k) {
-    if (!lane[k].traced) continue;
-    const int gid = lane[k].gid, sample = lane[k].sample;
-    const size_t record = lane[k].record;
-    const float3 p = lane[k].p, dir = lane_dir[k];
-    const float pdf = lane[k].pdf, alpha = lane[k].alpha;
-    const bool mirror = lane[k].mirror;
-    TraceScene sc = scene[k];
-    const ScreenRay ray = lane_ray[k];
-    int2 cell = lane_cell[k];  // the pixel whose surface the ray hit; its colour is the hit's colour
-    float t = lane_t[k];
+    for (int k = 0; k < SSRCL_TRACE_LANES; ++k) {
+      if (!lane[k].traced) continue;
+      const int gid = lane[k].gid, sample = lane[k].sample;
+      const size_t record = lane[k].record;
+      const float3 p = lane[k].p, dir = lane_dir[k];
+      const float pdf = lane[k].pdf, alpha = lane[k].alpha;
+      const bool mirror = lane[k].mirror;
+      TraceScene sc = scene[k];
+      const ScreenRay ray = lane_ray[k];
+      int2 cell = lane_cell[k];  // the pixel whose surface the ray hit; its colour is the hit's colour
+      float t = lane_t[k];
 #if SSRCL_VIEWS
-    // Only the primary ray's passage counts: the glossy hit's second ray below only shades the hit.
-    ray_state[record] = (sc.behind ? SSRCL_RAY_BEHIND : 0) | (t >= 0.0f && sc.thick ? SSRCL_RAY_THICK : 0);
+      // Only the primary ray's passage counts: the glossy hit's second ray below only shades the hit.
+      ray_state[record] = (sc.behind ? SSRCL_RAY_BEHIND : 0) | (t >= 0.0f && sc.thick ? SSRCL_RAY_THICK : 0);
 #endif
-    if (t < 0.0f) {
-      if (SSRCL_COUNT_WORK) count_work(work_counters, gid, &sc);
-      continue;
-    }
-
-    float2 s = ray_screen(&ray, t);
-    float3 hit = ray_point(&ray, t);
-    cell = clamp(cell, (int2)(0, 0), size - 1);
-    int q = cell.y * size.x + cell.x;
-    // A prefiltered hit is looked up once the batch's hits are counted (hit_prefilter.cl): recorded
-    // as the screen position and the mip of its footprint.
-    bool prefiltered = prefiltered_hit(&sc, q, mirror ? 0.0f : alpha, params.cone_scale);
-    float4 radiance = prefiltered
-                          ? (float4)(s, -1.0f - hit_mip_level(&sc, proj, &ray, t, length(hit - p), alpha, params.cone_scale), 0.0f)
-                          : color_pyramid[q];
-    // A hit on a glossy pixel: its screen colour is what it reflects toward the camera, not toward
-    // this pixel. With its non-reflected radiance known (`base`), the hit's radiance is that plus
-    // its specular part, what one more ray, reflected at the hit, finds, times its specular colour.
-    // A pixel wrongly marked glossy (a material that writes no roughness reads 0) has specular
-    // colour 0 and keeps its base: its screen colour. A mirror ray is one sample nothing averages:
-    // it bounces only where the second ray is deterministic too (a mirror-like hit); a rough hit's
-    // one second ray shows there as noise (mirror sample: floor within 25% of Cycles 0.90 -> 0.74).
-    float4 nq = normals[q];
-    bool bounce = !mirror || nq.w <= mirror_roughness;
-    if (!prefiltered && params.has_base && nq.w < params.glossy_hit_roughness && (SSRCL_MATERIAL_HITS || bounce)) {
-      float alpha_q = fmax(roughness_to_alpha(nq.w, SSRCL_ROUGHNESS_MAPPING), 1e-4f);
-      float4 found = bounce ? trace_bounce(&sc, proj, near_plane, far_plane, linear_step, edge_fade, mirror_roughness,
-                                           color_pyramid, hit, dir, nq, alpha_q, q, sample, seed)
-                            : (float4)(0.0f, 0.0f, 0.0f, -1.0f);
-#if SSRCL_MATERIAL_HITS
-      // The specular colour times E(the hit's F0, its roughness, toward this pixel) times what the
-      // ray finds: Cycles' GlossCol is ~1 on dielectrics and metals alike, the Fresnel and a metal's
-      // tint live in Glossy Direct/Indirect, so with the colour alone a dielectric's specular part
-      // came out 10-25x too bright (1 against E 0.04-0.1 off grazing). Where the ray finds nothing
-      // (c2 < 1), or none is traced (a mirror ray on a rough hit), the guess is the glossy light
-      // the camera sees there times E(toward this pixel) / E(toward the camera), at most 1: raised,
-      // the camera's highlight comes back as the blob (where the floor shows props, issue 24's
-      // corpus and tests/data/glazed_props: capped it ties the screen colour within 0.01 dB on all
-      // six scenes, uncapped it loses up to 0.16 dB).
-      float3 f0_q = vload3(q, f0), base_q = vload3(q, base);
-      float2 e = specular_albedo(albedo, alpha_q, dot(nq.xyz, -dir));
-      float3 e_out = f0_q * e.x + e.y;
-      float3 v_q;
-      pixel_view_point(inv_proj, size, cell, positions[q].w, &v_q);
-      float2 e_cam = specular_albedo(albedo, alpha_q, dot(nq.xyz, -v_q));
-      float3 shaded = base_q + fmin(e_out / fmax(f0_q * e_cam.x + e_cam.y, 1e-4f), 1.0f) * (radiance.xyz - base_q);
-      if (found.w >= 0.0f) shaded = mix(shaded, base_q + vload3(q, specular) * e_out * found.xyz, found.w);
-      radiance.xyz = sanitize_radiance3(shaded);
-#else
-      // Where the ray finds nothing on screen (confidence c2 < 1) the screen colour stays the best
-      // guess for that share.
-      if (found.w >= 0.0f) {
-        float3 bounced = vload3(q, base) + vload3(q, specular) * found.xyz;
-        radiance.xyz = sanitize_radiance3(mix(radiance.xyz, bounced, found.w));
+      if (t < 0.0f) {
+        if (SSRCL_COUNT_WORK) count_work(work_counters, gid, &sc);
+        continue;
       }
+
+      float2 s = ray_screen(&ray, t);
+      float3 hit = ray_point(&ray, t);
+      cell = clamp(cell, (int2)(0, 0), size - 1);
+      int q = cell.y * size.x + cell.x;
+      // A prefiltered hit is looked up once the batch's hits are counted (hit_prefilter.cl): recorded
+      // as the screen position and the mip of its footprint.
+      bool prefiltered = prefiltered_hit(&sc, q, mirror ? 0.0f : alpha, params.cone_scale);
+      float4 radiance = prefiltered
+                            ? (float4)(s, -1.0f - hit_mip_level(&sc, proj, &ray, t, length(hit - p), alpha, params.cone_scale), 0.0f)
+                            : color_pyramid[q];
+      // A hit on a glossy pixel: its screen colour is what it reflects toward the camera, not toward
+      // this pixel. With its non-reflected radiance known (`base`), the hit's radiance is that plus
+      // its specular part, what one more ray, reflected at the hit, finds, times its specular colour.
+      // A pixel wrongly marked glossy (a material that writes no roughness reads 0) has specular
+      // colour 0 and keeps its base: its screen colour. A mirror ray is one sample nothing averages:
+      // it bounces only where the second ray is deterministic too (a mirror-like hit); a rough hit's
+      // one second ray shows there as noise (mirror sample: floor within 25% of Cycles 0.90 -> 0.74).
+      float4 nq = normals[q];
+      bool bounce = !mirror || nq.w <= mirror_roughness;
+      if (!prefiltered && params.has_base && nq.w < params.glossy_hit_roughness && (SSRCL_MATERIAL_HITS || bounce)) {
+        float alpha_q = fmax(roughness_to_alpha(nq.w, SSRCL_ROUGHNESS_MAPPING), 1e-4f);
+        float4 found = bounce ? trace_bounce(&sc, proj, near_plane, far_plane, linear_step, edge_fade, mirror_roughness,
+                                             color_pyramid, hit, dir, nq, alpha_q, q, sample, seed)
+                              : (float4)(0.0f, 0.0f, 0.0f, -1.0f);
+#if SSRCL_MATERIAL_HITS
+        // The specular colour times E(the hit's F0, its roughness, toward this pixel) times what the
+        // ray finds: Cycles' GlossCol is ~1 on dielectrics and metals alike, the Fresnel and a metal's
+        // tint live in Glossy Direct/Indirect, so with the colour alone a dielectric's specular part
+        // came out 10-25x too bright (1 against E 0.04-0.1 off grazing). Where the ray finds nothing
+        // (c2 < 1), or none is traced (a mirror ray on a rough hit), the guess is the glossy light
+        // the camera sees there times E(toward this pixel) / E(toward the camera), at most 1: raised,
+        // the camera's highlight comes back as the blob (where the floor shows props, issue 24's
+        // corpus and tests/data/glazed_props: capped it ties the screen colour within 0.01 dB on all
+        // six scenes, uncapped it loses up to 0.16 dB).
+        float3 f0_q = vload3(q, f0), base_q = vload3(q, base);
+        float2 e = specular_albedo(albedo, alpha_q, dot(nq.xyz, -dir));
+        float3 e_out = f0_q * e.x + e.y;
+        float3 v_q;
+        pixel_view_point(inv_proj, size, cell, positions[q].w, &v_q);
+        float2 e_cam = specular_albedo(albedo, alpha_q, dot(nq.xyz, -v_q));
+        float3 shaded = base_q + fmin(e_out / fmax(f0_q * e_cam.x + e_cam.y, 1e-4f), 1.0f) * (radiance.xyz - base_q);
+        if (found.w >= 0.0f) shaded = mix(shaded, base_q + vload3(q, specular) * e_out * found.xyz, found.w);
+        radiance.xyz = sanitize_radiance3(shaded);
+#else
+        // Where the ray finds nothing on screen (confidence c2 < 1) the screen colour stays the best
+        // guess for that share.
+        if (found.w >= 0.0f) {
+          float3 bounced = vload3(q, base) + vload3(q, specular) * found.xyz;
+          radiance.xyz = sanitize_radiance3(mix(radiance.xyz, bounced, found.w));
+        }
 #endif
+      }
+      if (SSRCL_COUNT_WORK) count_work(work_counters, gid, &sc);
+      ray_hit[record] = (float4)(hit, edge_confidence(s, size, edge_fade));
+      ray_radiance[record] = (float4)(radiance.xyz, pdf);
     }
-    if (SSRCL_COUNT_WORK) count_work(work_counters, gid, &sc);
-    ray_hit[record] = (float4)(hit, edge_confidence(s, size, edge_fade));
-    ray_radiance[record] = (float4)(radiance.xyz, pdf);
   }
 }
