@@ -183,8 +183,8 @@ inline float8 gather8(__global const float* a, int8 i) {
   return (float8)(a[i.s0], a[i.s1], a[i.s2], a[i.s3], a[i.s4], a[i.s5], a[i.s6], a[i.s7]);
 }
 
-// Eight float4 records as four float8s: one vector load a record, then shuffles (a load per float
-// cost a quarter more per step).
+// Eight float4 records as four float8s: one vector load a record, then shuffles (not a load per
+// float).
 inline float8 gather8_xyzw(__global const float4* a, int8 i, float8* y, float8* z, float8* w) {
   float4 v0 = a[i.s0], v1 = a[i.s1], v2 = a[i.s2], v3 = a[i.s3], v4 = a[i.s4], v5 = a[i.s5], v6 = a[i.s6],
          v7 = a[i.s7];
@@ -201,11 +201,11 @@ inline float8 cell_exit8(const ScreenRays8* r, float8 t, float8 nudge, float8 ce
   *cx = convert_int8(fx);
   *cy = convert_int8(fy);
   // The boundary in its own statement: folded into the subtraction it would round once (an FMA).
-  float8 bx = (fx + select((float8)(0.0f), (float8)(1.0f), isgreater(r->dsx, 0.0f))) * cell_size;
-  float8 by = (fy + select((float8)(0.0f), (float8)(1.0f), isgreater(r->dsy, 0.0f))) * cell_size;
+  float8 bx = (fx + select((float8)(0.0f), (float8)(1.0f), isgreater(r->dsx, (float8)(0.0f)))) * cell_size;
+  float8 by = (fy + select((float8)(0.0f), (float8)(1.0f), isgreater(r->dsy, (float8)(0.0f)))) * cell_size;
   float8 tx = (bx - r->s0x) / r->dsx, ty = (by - r->s0y) / r->dsy;
-  tx = select(tx, (float8)(INFINITY), isless(fabs(r->dsx), 1e-12f));
-  ty = select(ty, (float8)(INFINITY), isless(fabs(r->dsy), 1e-12f));
+  tx = select(tx, (float8)(INFINITY), isless(fabs(r->dsx), (float8)(1e-12f)));
+  ty = select(ty, (float8)(INFINITY), isless(fabs(r->dsy), (float8)(1e-12f)));
   return fmin(tx, ty);
 }
 
