@@ -183,8 +183,15 @@ inline float8 gather8(__global const float* a, int8 i) {
   return (float8)(a[i.s0], a[i.s1], a[i.s2], a[i.s3], a[i.s4], a[i.s5], a[i.s6], a[i.s7]);
 }
 
-inline int8 gather8i(__global const int* a, int8 i) {
-  return (int8)(a[i.s0], a[i.s1], a[i.s2], a[i.s3], a[i.s4], a[i.s5], a[i.s6], a[i.s7]);
+// Eight float4 records as four float8s: one vector load a record, then shuffles (not a load per
+// float).
+inline float8 gather8_xyzw(__global const float4* a, int8 i, float8* y, float8* z, float8* w) {
+  float4 v0 = a[i.s0], v1 = a[i.s1], v2 = a[i.s2], v3 = a[i.s3], v4 = a[i.s4], v5 = a[i.s5], v6 = a[i.s6],
+         v7 = a[i.s7];
+  *y = (float8)(v0.y, v1.y, v2.y, v3.y, v4.y, v5.y, v6.y, v7.y);
+  *z = (float8)(v0.z, v1.z, v2.z, v3.z, v4.z, v5.z, v6.z, v7.z);
+  *w = (float8)(v0.w, v1.w, v2.w, v3.w, v4.w, v5.w, v6.w, v7.w);
+  return (float8)(v0.x, v1.x, v2.x, v3.x, v4.x, v5.x, v6.x, v7.x);
 }
 
 // cell_exit per lane.
@@ -194,11 +201,11 @@ inline float8 cell_exit8(const ScreenRays8* r, float8 t, float8 nudge, float8 ce
   *cx = convert_int8(fx);
   *cy = convert_int8(fy);
   // The boundary in its own statement: folded into the subtraction it would round once (an FMA).
-  float8 bx = (fx + select((float8)(0.0f), (float8)(1.0f), isgreater(r->dsx, 0.0f))) * cell_size;
-  float8 by = (fy + select((float8)(0.0f), (float8)(1.0f), isgreater(r->dsy, 0.0f))) * cell_size;
+  float8 bx = (fx + select((float8)(0.0f), (float8)(1.0f), isgreater(r->dsx, (float8)(0.0f)))) * cell_size;
+  float8 by = (fy + select((float8)(0.0f), (float8)(1.0f), isgreater(r->dsy, (float8)(0.0f)))) * cell_size;
   float8 tx = (bx - r->s0x) / r->dsx, ty = (by - r->s0y) / r->dsy;
-  tx = select(tx, (float8)(INFINITY), isless(fabs(r->dsx), 1e-12f));
-  ty = select(ty, (float8)(INFINITY), isless(fabs(r->dsy), 1e-12f));
+  tx = select(tx, (float8)(INFINITY), isless(fabs(r->dsx), (float8)(1e-12f)));
+  ty = select(ty, (float8)(INFINITY), isless(fabs(r->dsy), (float8)(1e-12f)));
   return fmin(tx, ty);
 }
 
@@ -219,10 +226,9 @@ inline float8 plane_side8(const ScreenRays8* r, float8 t, float8 px, float8 py, 
 inline float8 hit_pixel8(const TraceScene* sc, const ScreenRays8* r, float8 dx, float8 dy, float8 dz, int8 cx,
                          int8 cy, float8 t_in, float8 t_out, int8 lanes, int8* in_front, int8* seen, int8* behind,
                          int8* thick) {
-  int8 q = 4 * (clamp(cy, 0, sc->size.y - 1) * sc->size.x + clamp(cx, 0, sc->size.x - 1));
-  __global const float* planes = (__global const float*)sc->planes;
-  float8 px = gather8(planes, q), py = gather8(planes, q + 1), pz = gather8(planes, q + 2),
-         pw = gather8(planes, q + 3);
+  int8 q = clamp(cy, 0, sc->size.y - 1) * sc->size.x + clamp(cx, 0, sc->size.x - 1);
+  float8 py, pz, pw;
+  float8 px = gather8_xyzw(sc->planes, q, &py, &pz, &pw);
   int8 sky = pw == -INFINITY;  // SSRCL_NO_PLANE
   float8 g_in = plane_side8(r, t_in, px, py, pz, pw), g_out = plane_side8(r, t_out, px, py, pz, pw);
   *in_front = sky | (g_out > 0.0f);
@@ -257,7 +263,7 @@ inline void trace_hiz_lanes(TraceScene* sc, const ScreenRay* rays, const float3*
   int8 iterations = vload8(0, lane_iterations), fetches = 0;
   int8 seen = vload8(0, lane_seen) != 0, behind = 0, thick = 0;
   const int top = sc->level_count - 1;
-  __global const int* levels = (__global const int*)sc->levels;  // HzbLevel: offset, width, height, pad
+  __global const float4* levels = (__global const float4*)sc->levels;  // HzbLevel: 4 ints, read as bits
 
   float8 nudge = 0.01f / fmax(fabs(r.dsx), fabs(r.dsy));
   int8 deeper = r.q0z * r.dqw - r.dqz * r.q0w > 0.0f;
@@ -271,19 +277,23 @@ inline void trace_hiz_lanes(TraceScene* sc, const ScreenRay* rays, const float3*
     if (!any(active)) break;
     float8 t_exit = cell_exit8(&r, t, nudge, convert_float8((int8)(1) << mip), &cx, &cy);
     int8 fine = active & (mip == 0);
-    int8 in_front;
-    float8 t_pixel = hit_pixel8(sc, &r, dx, dy, dz, cx, cy, t, fmin(t_exit, 1.0f), fine, &in_front, &seen, &behind,
-                                &thick);
-    int8 hit = fine & (t_pixel >= 0.0f);
-    t_hit = select(t_hit, t_pixel, hit);
-    hit_x = select(hit_x, cx, hit);
-    hit_y = select(hit_y, cy, hit);
-
-    int8 l4 = 4 * mip;
-    int8 l_width = gather8i(levels, l4 + 1);
-    int8 texel = gather8i(levels, l4) + clamp(cy, 0, gather8i(levels, l4 + 2) - 1) * l_width +
-                 clamp(cx, 0, l_width - 1);
-    float8 d_min = gather8(sc->hzb, texel);
+    // Each side's texels are read only where a lane needs them.
+    int8 in_front = 0, hit = 0;
+    if (any(fine)) {
+      float8 t_pixel = hit_pixel8(sc, &r, dx, dy, dz, cx, cy, t, fmin(t_exit, 1.0f), fine, &in_front, &seen, &behind,
+                                  &thick);
+      hit = fine & (t_pixel >= 0.0f);
+      t_hit = select(t_hit, t_pixel, hit);
+      hit_x = select(hit_x, cx, hit);
+      hit_y = select(hit_y, cy, hit);
+    }
+    float8 d_min = 0.0f;
+    if (!all(fine | ~active)) {
+      float8 l_width, l_height, unused;
+      int8 l_offset = as_int8(gather8_xyzw(levels, mip, &l_width, &l_height, &unused));
+      int8 width = as_int8(l_width);
+      d_min = gather8(sc->hzb, l_offset + clamp(cy, 0, as_int8(l_height) - 1) * width + clamp(cx, 0, width - 1));
+    }
     int8 front = -(r.q0z + t * r.dqz) / (r.q0w + t * r.dqw) < d_min;
     float8 denom = r.dqz + d_min * r.dqw;
     float8 t_cross = -(r.q0z + d_min * r.q0w) / denom;
@@ -515,139 +525,145 @@ __kernel void trace_rays(TraceParams params, __global const float* hzb, __global
   const float mirror_roughness = params.frame.mirror_roughness, edge_fade = params.edge_fade;
   const int batch_size = params.batch_size, level_count = params.level_count;
   const uint seed = params.seed;
-  // SSRCL_TRACE_LANES consecutive rays per work-item: made one by one, traced together in lanes
-  // (Hi-Z), then shaded one by one.
-  const int first = (int)get_global_id(0) * SSRCL_TRACE_LANES;
-  PixelRay lane[SSRCL_TRACE_LANES];
-  TraceScene scene[SSRCL_TRACE_LANES];
-  ScreenRay lane_ray[SSRCL_TRACE_LANES];
-  float3 lane_dir[SSRCL_TRACE_LANES];
-  int lane_live[SSRCL_TRACE_LANES];  // a screen ray to trace
-  float lane_t[SSRCL_TRACE_LANES];
-  int2 lane_cell[SSRCL_TRACE_LANES];
-  for (int k = 0; k < SSRCL_TRACE_LANES; ++k) {
-    const ScreenRay none = {(float2)(0.0f), (float2)(0.0f), (float4)(0.0f), (float4)(0.0f)};
-    const TraceScene sc = {size, hzb, levels, level_count, planes, normals, params.max_iterations, 0, 0};
-    scene[k] = sc;  // every lane's: trace_hiz_lanes reads the frame from scene[0]
-    lane[k].traced = lane_live[k] = 0;
-    lane_ray[k] = none;  // lanes without a ray are traced too, their results unused
-    lane_dir[k] = (float3)(0.0f);
-    lane_t[k] = -1.0f;
-    int gid = first + k;
-    if (gid >= params.listed * batch_size) continue;
-    int i = ray_list[gid / batch_size];
-    int slot = gid % batch_size;
-    int sample = params.first_sample + slot;
-    if (sample >= pixel_rays[i]) continue;
-    size_t record = (size_t)i * batch_size + slot;
-    ray_hit[record] = (float4)(0.0f, 0.0f, 0.0f, -1.0f);
-    ray_radiance[record] = (float4)(0.0f);
+  // The rays of SSRCL_TRACE_LANES listed pixels per work-item, in rounds of up to SSRCL_TRACE_LANES:
+  // made one by one (skipping the slots a pixel has no ray in, so lanes stay full where pixels have
+  // one ray, as mirror pixels do), traced together in lanes (Hi-Z), then shaded one by one.
+  const int end = min(((int)get_global_id(0) + 1) * SSRCL_TRACE_LANES, params.listed) * batch_size;
+  int next = (int)get_global_id(0) * SSRCL_TRACE_LANES * batch_size;
+  while (next < end) {
+    PixelRay lane[SSRCL_TRACE_LANES];
+    TraceScene scene[SSRCL_TRACE_LANES];
+    ScreenRay lane_ray[SSRCL_TRACE_LANES];
+    float3 lane_dir[SSRCL_TRACE_LANES];
+    int lane_live[SSRCL_TRACE_LANES];  // a screen ray to trace
+    float lane_t[SSRCL_TRACE_LANES];
+    int2 lane_cell[SSRCL_TRACE_LANES];
+    for (int k = 0; k < SSRCL_TRACE_LANES; ++k) {
+      const ScreenRay none = {(float2)(0.0f), (float2)(0.0f), (float4)(0.0f), (float4)(0.0f)};
+      const TraceScene sc = {size, hzb, levels, level_count, planes, normals, params.max_iterations, 0, 0};
+      scene[k] = sc;  // every lane's: trace_hiz_lanes reads the frame from scene[0]
+      lane[k].traced = lane_live[k] = 0;
+      lane_ray[k] = none;  // lanes without a ray are traced too, their results unused
+      lane_dir[k] = (float3)(0.0f);
+      lane_t[k] = -1.0f;
+    }
+    for (int k = 0; k < SSRCL_TRACE_LANES && next < end;) {
+      int gid = next++;
+      int i = ray_list[gid / batch_size];
+      int slot = gid % batch_size;
+      int sample = params.first_sample + slot;
+      if (sample >= pixel_rays[i]) continue;
+      size_t record = (size_t)i * batch_size + slot;
+      ray_hit[record] = (float4)(0.0f, 0.0f, 0.0f, -1.0f);
+      ray_radiance[record] = (float4)(0.0f);
 #if SSRCL_VIEWS
-    ray_state[record] = 0;
+      ray_state[record] = 0;
 #endif
 
-    float4 nr = normals[i];
-    float3 n = nr.xyz;
-    float3 v;
-    float3 p = pixel_view_point(inv_proj, size, (int2)(i % size.x, i / size.x), positions[i].w, &v);
-    float3 o = -v;
-    if (dot(o, n) <= 0.0f) continue;  // normal faces away from the viewer: no defined reflection
+      float4 nr = normals[i];
+      float3 n = nr.xyz;
+      float3 v;
+      float3 p = pixel_view_point(inv_proj, size, (int2)(i % size.x, i / size.x), positions[i].w, &v);
+      float3 o = -v;
+      if (dot(o, n) <= 0.0f) continue;  // normal faces away from the viewer: no defined reflection
 
-    // Mirror-like pixels have one ray, the exact mirror direction.
-    bool mirror = nr.w <= mirror_roughness;
-    float alpha = fmax(roughness_to_alpha(nr.w, SSRCL_ROUGHNESS_MAPPING), 1e-4f);
-    float pdf;
-    float3 dir = sample_reflection(o, n, mirror, alpha, sample_2d(i, sample, seed), &pdf);
-    if (!(dot(dir, dir) > 0.0f)) continue;
-    ray_hit[record] = (float4)(dir, -1.0f);
-    ray_radiance[record] = (float4)(0.0f, 0.0f, 0.0f, pdf);
+      // Mirror-like pixels have one ray, the exact mirror direction.
+      bool mirror = nr.w <= mirror_roughness;
+      float alpha = fmax(roughness_to_alpha(nr.w, SSRCL_ROUGHNESS_MAPPING), 1e-4f);
+      float pdf;
+      float3 dir = sample_reflection(o, n, mirror, alpha, sample_2d(i, sample, seed), &pdf);
+      if (!(dot(dir, dir) > 0.0f)) continue;
+      ray_hit[record] = (float4)(dir, -1.0f);
+      ray_radiance[record] = (float4)(0.0f, 0.0f, 0.0f, pdf);
 
-    PixelRay made = {gid, sample, record, p, pdf, alpha, mirror, 1};
-    lane[k] = made;
-    lane_dir[k] = dir;
-    lane_live[k] = ray_from(proj, size, near_plane, far_plane, p, dir, &lane_ray[k]);
-  }
+      PixelRay made = {gid, sample, record, p, pdf, alpha, mirror, 1};
+      lane[k] = made;
+      lane_dir[k] = dir;
+      lane_live[k] = ray_from(proj, size, near_plane, far_plane, p, dir, &lane_ray[k]);
+      ++k;
+    }
 #if SSRCL_TRACER == SSRCL_TRACER_HIZ
-  trace_hiz_lanes(scene, lane_ray, lane_dir, lane_live, lane_t, lane_cell);
+    trace_hiz_lanes(scene, lane_ray, lane_dir, lane_live, lane_t, lane_cell);
 #else
-  for (int k = 0; k < SSRCL_TRACE_LANES; ++k)
-    if (lane_live[k]) lane_t[k] = trace_ray(&scene[k], linear_step, &lane_ray[k], lane_dir[k], &lane_cell[k]);
+    for (int k = 0; k < SSRCL_TRACE_LANES; ++k)
+      if (lane_live[k]) lane_t[k] = trace_ray(&scene[k], linear_step, &lane_ray[k], lane_dir[k], &lane_cell[k]);
 #endif
 
-  for (int k = 0; k < SSRCL_TRACE_LANES; ++k) {
-    if (!lane[k].traced) continue;
-    const int gid = lane[k].gid, sample = lane[k].sample;
-    const size_t record = lane[k].record;
-    const float3 p = lane[k].p, dir = lane_dir[k];
-    const float pdf = lane[k].pdf, alpha = lane[k].alpha;
-    const bool mirror = lane[k].mirror;
-    TraceScene sc = scene[k];
-    const ScreenRay ray = lane_ray[k];
-    int2 cell = lane_cell[k];  // the pixel whose surface the ray hit; its colour is the hit's colour
-    float t = lane_t[k];
+    for (int k = 0; k < SSRCL_TRACE_LANES; ++k) {
+      if (!lane[k].traced) continue;
+      const int gid = lane[k].gid, sample = lane[k].sample;
+      const size_t record = lane[k].record;
+      const float3 p = lane[k].p, dir = lane_dir[k];
+      const float pdf = lane[k].pdf, alpha = lane[k].alpha;
+      const bool mirror = lane[k].mirror;
+      TraceScene sc = scene[k];
+      const ScreenRay ray = lane_ray[k];
+      int2 cell = lane_cell[k];  // the pixel whose surface the ray hit; its colour is the hit's colour
+      float t = lane_t[k];
 #if SSRCL_VIEWS
-    // Only the primary ray's passage counts: the glossy hit's second ray below only shades the hit.
-    ray_state[record] = (sc.behind ? SSRCL_RAY_BEHIND : 0) | (t >= 0.0f && sc.thick ? SSRCL_RAY_THICK : 0);
+      // Only the primary ray's passage counts: the glossy hit's second ray below only shades the hit.
+      ray_state[record] = (sc.behind ? SSRCL_RAY_BEHIND : 0) | (t >= 0.0f && sc.thick ? SSRCL_RAY_THICK : 0);
 #endif
-    if (t < 0.0f) {
-      if (SSRCL_COUNT_WORK) count_work(work_counters, gid, &sc);
-      continue;
-    }
-
-    float2 s = ray_screen(&ray, t);
-    float3 hit = ray_point(&ray, t);
-    cell = clamp(cell, (int2)(0, 0), size - 1);
-    int q = cell.y * size.x + cell.x;
-    // A prefiltered hit is looked up once the batch's hits are counted (hit_prefilter.cl): recorded
-    // as the screen position and the mip of its footprint.
-    bool prefiltered = prefiltered_hit(&sc, q, mirror ? 0.0f : alpha, params.cone_scale);
-    float4 radiance = prefiltered
-                          ? (float4)(s, -1.0f - hit_mip_level(&sc, proj, &ray, t, length(hit - p), alpha, params.cone_scale), 0.0f)
-                          : color_pyramid[q];
-    // A hit on a glossy pixel: its screen colour is what it reflects toward the camera, not toward
-    // this pixel. With its non-reflected radiance known (`base`), the hit's radiance is that plus
-    // its specular part, what one more ray, reflected at the hit, finds, times its specular colour.
-    // A pixel wrongly marked glossy (a material that writes no roughness reads 0) has specular
-    // colour 0 and keeps its base: its screen colour. A mirror ray is one sample nothing averages:
-    // it bounces only where the second ray is deterministic too (a mirror-like hit); a rough hit's
-    // one second ray shows there as noise (mirror sample: floor within 25% of Cycles 0.90 -> 0.74).
-    float4 nq = normals[q];
-    bool bounce = !mirror || nq.w <= mirror_roughness;
-    if (!prefiltered && params.has_base && nq.w < params.glossy_hit_roughness && (SSRCL_MATERIAL_HITS || bounce)) {
-      float alpha_q = fmax(roughness_to_alpha(nq.w, SSRCL_ROUGHNESS_MAPPING), 1e-4f);
-      float4 found = bounce ? trace_bounce(&sc, proj, near_plane, far_plane, linear_step, edge_fade, mirror_roughness,
-                                           color_pyramid, hit, dir, nq, alpha_q, q, sample, seed)
-                            : (float4)(0.0f, 0.0f, 0.0f, -1.0f);
-#if SSRCL_MATERIAL_HITS
-      // The specular colour times E(the hit's F0, its roughness, toward this pixel) times what the
-      // ray finds: Cycles' GlossCol is ~1 on dielectrics and metals alike, the Fresnel and a metal's
-      // tint live in Glossy Direct/Indirect, so with the colour alone a dielectric's specular part
-      // came out 10-25x too bright (1 against E 0.04-0.1 off grazing). Where the ray finds nothing
-      // (c2 < 1), or none is traced (a mirror ray on a rough hit), the guess is the glossy light
-      // the camera sees there times E(toward this pixel) / E(toward the camera), at most 1: raised,
-      // the camera's highlight comes back as the blob (where the floor shows props, issue 24's
-      // corpus and tests/data/glazed_props: capped it ties the screen colour within 0.01 dB on all
-      // six scenes, uncapped it loses up to 0.16 dB).
-      float3 f0_q = vload3(q, f0), base_q = vload3(q, base);
-      float2 e = specular_albedo(albedo, alpha_q, dot(nq.xyz, -dir));
-      float3 e_out = f0_q * e.x + e.y;
-      float3 v_q;
-      pixel_view_point(inv_proj, size, cell, positions[q].w, &v_q);
-      float2 e_cam = specular_albedo(albedo, alpha_q, dot(nq.xyz, -v_q));
-      float3 shaded = base_q + fmin(e_out / fmax(f0_q * e_cam.x + e_cam.y, 1e-4f), 1.0f) * (radiance.xyz - base_q);
-      if (found.w >= 0.0f) shaded = mix(shaded, base_q + vload3(q, specular) * e_out * found.xyz, found.w);
-      radiance.xyz = sanitize_radiance3(shaded);
-#else
-      // Where the ray finds nothing on screen (confidence c2 < 1) the screen colour stays the best
-      // guess for that share.
-      if (found.w >= 0.0f) {
-        float3 bounced = vload3(q, base) + vload3(q, specular) * found.xyz;
-        radiance.xyz = sanitize_radiance3(mix(radiance.xyz, bounced, found.w));
+      if (t < 0.0f) {
+        if (SSRCL_COUNT_WORK) count_work(work_counters, gid, &sc);
+        continue;
       }
+
+      float2 s = ray_screen(&ray, t);
+      float3 hit = ray_point(&ray, t);
+      cell = clamp(cell, (int2)(0, 0), size - 1);
+      int q = cell.y * size.x + cell.x;
+      // A prefiltered hit is looked up once the batch's hits are counted (hit_prefilter.cl): recorded
+      // as the screen position and the mip of its footprint.
+      bool prefiltered = prefiltered_hit(&sc, q, mirror ? 0.0f : alpha, params.cone_scale);
+      float4 radiance = prefiltered
+                            ? (float4)(s, -1.0f - hit_mip_level(&sc, proj, &ray, t, length(hit - p), alpha, params.cone_scale), 0.0f)
+                            : color_pyramid[q];
+      // A hit on a glossy pixel: its screen colour is what it reflects toward the camera, not toward
+      // this pixel. With its non-reflected radiance known (`base`), the hit's radiance is that plus
+      // its specular part, what one more ray, reflected at the hit, finds, times its specular colour.
+      // A pixel wrongly marked glossy (a material that writes no roughness reads 0) has specular
+      // colour 0 and keeps its base: its screen colour. A mirror ray is one sample nothing averages:
+      // it bounces only where the second ray is deterministic too (a mirror-like hit); a rough hit's
+      // one second ray shows there as noise (mirror sample: floor within 25% of Cycles 0.90 -> 0.74).
+      float4 nq = normals[q];
+      bool bounce = !mirror || nq.w <= mirror_roughness;
+      if (!prefiltered && params.has_base && nq.w < params.glossy_hit_roughness && (SSRCL_MATERIAL_HITS || bounce)) {
+        float alpha_q = fmax(roughness_to_alpha(nq.w, SSRCL_ROUGHNESS_MAPPING), 1e-4f);
+        float4 found = bounce ? trace_bounce(&sc, proj, near_plane, far_plane, linear_step, edge_fade, mirror_roughness,
+                                             color_pyramid, hit, dir, nq, alpha_q, q, sample, seed)
+                              : (float4)(0.0f, 0.0f, 0.0f, -1.0f);
+#if SSRCL_MATERIAL_HITS
+        // The specular colour times E(the hit's F0, its roughness, toward this pixel) times what the
+        // ray finds: Cycles' GlossCol is ~1 on dielectrics and metals alike, the Fresnel and a metal's
+        // tint live in Glossy Direct/Indirect, so with the colour alone a dielectric's specular part
+        // came out 10-25x too bright (1 against E 0.04-0.1 off grazing). Where the ray finds nothing
+        // (c2 < 1), or none is traced (a mirror ray on a rough hit), the guess is the glossy light
+        // the camera sees there times E(toward this pixel) / E(toward the camera), at most 1: raised,
+        // the camera's highlight comes back as the blob (where the floor shows props, issue 24's
+        // corpus and tests/data/glazed_props: capped it ties the screen colour within 0.01 dB on all
+        // six scenes, uncapped it loses up to 0.16 dB).
+        float3 f0_q = vload3(q, f0), base_q = vload3(q, base);
+        float2 e = specular_albedo(albedo, alpha_q, dot(nq.xyz, -dir));
+        float3 e_out = f0_q * e.x + e.y;
+        float3 v_q;
+        pixel_view_point(inv_proj, size, cell, positions[q].w, &v_q);
+        float2 e_cam = specular_albedo(albedo, alpha_q, dot(nq.xyz, -v_q));
+        float3 shaded = base_q + fmin(e_out / fmax(f0_q * e_cam.x + e_cam.y, 1e-4f), 1.0f) * (radiance.xyz - base_q);
+        if (found.w >= 0.0f) shaded = mix(shaded, base_q + vload3(q, specular) * e_out * found.xyz, found.w);
+        radiance.xyz = sanitize_radiance3(shaded);
+#else
+        // Where the ray finds nothing on screen (confidence c2 < 1) the screen colour stays the best
+        // guess for that share.
+        if (found.w >= 0.0f) {
+          float3 bounced = vload3(q, base) + vload3(q, specular) * found.xyz;
+          radiance.xyz = sanitize_radiance3(mix(radiance.xyz, bounced, found.w));
+        }
 #endif
+      }
+      if (SSRCL_COUNT_WORK) count_work(work_counters, gid, &sc);
+      ray_hit[record] = (float4)(hit, edge_confidence(s, size, edge_fade));
+      ray_radiance[record] = (float4)(radiance.xyz, pdf);
     }
-    if (SSRCL_COUNT_WORK) count_work(work_counters, gid, &sc);
-    ray_hit[record] = (float4)(hit, edge_confidence(s, size, edge_fade));
-    ray_radiance[record] = (float4)(radiance.xyz, pdf);
   }
 }

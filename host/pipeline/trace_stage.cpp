@@ -128,10 +128,10 @@ void TraceStage::upload(cl::CommandQueue& q, const float* base, const float* spe
 
 void TraceStage::enqueue(cl::CommandQueue& q, const TraceParams& params, StageEvents& events) {
   kernel_.setArg(0, params);
-  const size_t rays = size_t(params.listed) * params.batch_size;
-  q.enqueueNDRangeKernel(kernel_, cl::NullRange,
-                         cl::NDRange(roundUp((rays + SSRCL_TRACE_LANES - 1) / SSRCL_TRACE_LANES, 64)), cl::NDRange(64),
-                         nullptr, newEvent(events, "trace"));
+  // A work-item per SSRCL_TRACE_LANES listed pixels (kernels/trace.cl).
+  const size_t items = (size_t(params.listed) + SSRCL_TRACE_LANES - 1) / SSRCL_TRACE_LANES;
+  q.enqueueNDRangeKernel(kernel_, cl::NullRange, cl::NDRange(roundUp(items, 64)), cl::NDRange(64), nullptr,
+                         newEvent(events, "trace"));
 }
 
 void TraceStage::readWork(cl::CommandQueue& q, StageTimes& times) {
