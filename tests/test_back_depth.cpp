@@ -134,18 +134,20 @@ std::string inputsRecord(const std::string& exr) {
   return Imf::InputFile(exr.c_str()).header().typedAttribute<Imf::StringAttribute>("ssrcl/inputs").value();
 }
 
-// `ssrcl trace --back-depth-file`: traced with it (recorded in ssrcl/inputs, a different pass),
+// `ssrcl trace --back-depth-file` (and --back-depth-channel): traced with it (recorded in
+// ssrcl/inputs, a different pass),
 // and a wrong one refused naming it, leaving no output.
 TEST(BackDepth, TraceCommandReadsAndRecordsIt) {
   test::TempDir dir;
   const std::string cli = test::shellQuote(SSRCL_CLI) + " trace " + test::shellQuote(kScene + ".exr") +
-                          " --quality low --no-input-check -o ";
+                          " --quality draft -o ";
   const test::CommandResult with =
       test::runCommand(cli + test::shellQuote(dir.file("with.exr")) + " --back-depth-file " +
-                       test::shellQuote(kScene + ".back.exr") + " 2>&1");
+                       test::shellQuote(kScene + ".back.exr") + " --back-depth-channel ViewLayer.Depth.Z 2>&1");
   ASSERT_EQ(with.exitCode, 0) << with.output;
-  EXPECT_NE(inputsRecord(dir.file("with.exr")).find("\"back_depth\":\"" + kScene + ".back.exr\""), std::string::npos)
-      << inputsRecord(dir.file("with.exr"));
+  const std::string record = inputsRecord(dir.file("with.exr"));
+  EXPECT_NE(record.find("\"back_depth\":\"" + kScene + ".back.exr\""), std::string::npos) << record;
+  EXPECT_NE(record.find("\"back_depth_channel\":\"ViewLayer.Depth.Z\""), std::string::npos) << record;
   const test::CommandResult without = test::runCommand(cli + test::shellQuote(dir.file("without.exr")) + " 2>&1");
   ASSERT_EQ(without.exitCode, 0) << without.output;
   EXPECT_EQ(inputsRecord(dir.file("without.exr")).find("back_depth"), std::string::npos);

@@ -251,6 +251,8 @@ const std::map<std::string, std::string> kCheckedElsewhere = {
     {"--output-form", "test_glossy_pass_form.cpp"},
     {"--f0-channels", "test_glossy_pass_form.cpp"},
     {"--metallic-channel", "test_glossy_pass_form.cpp"},
+    {"--back-depth-file", "test_back_depth.cpp"},
+    {"--back-depth-channel", "test_back_depth.cpp"},
 };
 
 // Every option `ssrcl trace --help` lists is covered: by the tables above, or by the file named

@@ -17,6 +17,7 @@
 
 #include "io/exr_deep_depth.hpp"
 #include "ssrcl/error.hpp"
+#include "ssrcl/frame.hpp"
 #include "support/temp_dir.hpp"
 
 namespace {
@@ -28,9 +29,11 @@ constexpr int kWidth = 5, kHeight = 3;
 // Pixel i holds i % 4 samples (0 to 3), fronts in decreasing order for odd pixels (a writer need
 // not sort), each a distinct interval [z, z + 0.25 (k + 1)].
 struct KnownSamples {
+  int width = kWidth, height = kHeight;
   std::vector<unsigned> counts;
   std::vector<std::vector<float>> z, zBack;
-  KnownSamples() {
+  explicit KnownSamples(bool pattern = true) {
+    if (!pattern) return;
     for (int i = 0; i < kWidth * kHeight; ++i) {
       const unsigned n = unsigned(i % 4);
       counts.push_back(n);
@@ -45,9 +48,10 @@ struct KnownSamples {
   }
 };
 
-// Writes the samples with OpenEXR's deep API, data window origin at (2, 1).
-void writeDeep(const std::string& path, const KnownSamples& s, bool tiled) {
-  const Imath::Box2i window({2, 1}, {2 + kWidth - 1, 1 + kHeight - 1});
+// Writes the samples with OpenEXR's deep API, data window origin at (originX, originY).
+void writeDeep(const std::string& path, const KnownSamples& s, bool tiled, int originX = 2, int originY = 1) {
+  const int w = s.width, h = s.height;
+  const Imath::Box2i window({originX, originY}, {originX + w - 1, originY + h - 1});
   Imf::Header header(window, window);
   header.channels().insert("Z", Imf::Channel(Imf::FLOAT));
   header.channels().insert("ZBack", Imf::Channel(Imf::FLOAT));
@@ -56,18 +60,18 @@ void writeDeep(const std::string& path, const KnownSamples& s, bool tiled) {
   if (tiled) header.setTileDescription(Imf::TileDescription(2, 2, Imf::ONE_LEVEL));
   std::vector<unsigned> counts = s.counts;
   std::vector<const float*> zAt, zBackAt;
-  for (int i = 0; i < kWidth * kHeight; ++i) {
+  for (int i = 0; i < w * h; ++i) {
     zAt.push_back(s.z[i].data());
     zBackAt.push_back(s.zBack[i].data());
   }
-  const long long offset = 1LL * kWidth + 2;  // pixel (0, 0) relative to the window's first
+  const long long offset = 1LL * originY * w + originX;  // pixel (0, 0) relative to the window's first
   Imf::DeepFrameBuffer fb;
   fb.insertSampleCountSlice(Imf::Slice(Imf::UINT, reinterpret_cast<char*>(counts.data() - offset), sizeof(unsigned),
-                                       sizeof(unsigned) * kWidth));
+                                       sizeof(unsigned) * w));
   fb.insert("Z", Imf::DeepSlice(Imf::FLOAT, reinterpret_cast<char*>(zAt.data() - offset), sizeof(float*),
-                                sizeof(float*) * kWidth, sizeof(float)));
+                                sizeof(float*) * w, sizeof(float)));
   fb.insert("ZBack", Imf::DeepSlice(Imf::FLOAT, reinterpret_cast<char*>(zBackAt.data() - offset), sizeof(float*),
-                                    sizeof(float*) * kWidth, sizeof(float)));
+                                    sizeof(float*) * w, sizeof(float)));
   if (tiled) {
     Imf::DeepTiledOutputFile out(path.c_str(), header);
     out.setFrameBuffer(fb);
@@ -75,8 +79,41 @@ void writeDeep(const std::string& path, const KnownSamples& s, bool tiled) {
   } else {
     Imf::DeepScanLineOutputFile out(path.c_str(), header);
     out.setFrameBuffer(fb);
-    out.writePixels(kHeight);
+    out.writePixels(h);
   }
+}
+
+// A deep back-face pass as `--back-depth-file`: one sample per pixel, [front, back] of the planar
+// pass the corpus scene has, reads as that pass (its nearest sample's ZBack); hard-surface
+// samples (ZBack = Z) as unknown.
+TEST(DeepDepth, DeepFileGivesTheBackFaceDepth) {
+  test::TempDir dir;
+  const std::string scene = std::string(SSRCL_SOURCE_DIR) + "/samples/corpus/thin_objects";
+  FrameSource planar;
+  planar.file = scene + ".exr";
+  planar.backDepthFile = scene + ".back.exr";
+  const Frame expected = loadFrame(planar);
+  const Image& front = expected.gbuffer.depth;
+  KnownSamples s(false);
+  s.width = front.width;
+  s.height = front.height;
+  for (size_t i = 0; i < front.data.size(); ++i) {
+    const float b = expected.gbuffer.backDepth.data[i], d = front.data[i];
+    const bool hard = i % 5 == 0;
+    s.counts.push_back(d < 1e9f ? 1 : 0);
+    s.z.push_back(d < 1e9f ? std::vector<float>{d} : std::vector<float>{});
+    s.zBack.push_back(d < 1e9f ? std::vector<float>{b > 0.0f && !hard ? b : d} : std::vector<float>{});
+  }
+  writeDeep(dir.file("deep.exr"), s, false, 0, 0);
+  FrameSource deep = planar;
+  deep.backDepthFile = dir.file("deep.exr");
+  const Frame f = loadFrame(deep);
+  size_t known = 0;
+  for (size_t i = 0; i < front.data.size(); ++i) {
+    EXPECT_EQ(f.gbuffer.backDepth.data[i], i % 5 == 0 ? 0.0f : expected.gbuffer.backDepth.data[i]) << "pixel " << i;
+    known += f.gbuffer.backDepth.data[i] > 0.0f;
+  }
+  EXPECT_GT(known, front.data.size() / 10);
 }
 
 void expectRead(const std::string& path, const KnownSamples& s) {

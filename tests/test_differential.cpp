@@ -314,6 +314,8 @@ TEST(Differential, BackFaceDepthAgreesWithTheCpuReference) {
             << examples.str() << "\n";
   RecordProperty("agreement_back_depth", std::to_string(withBack.rate()));
   RecordProperty("agreement_without_back_depth", std::to_string(withoutBack.rate()));
+  // Measured (PoCL): 99.9973% (2 of 73217 traced pixels; 17143 pixels have a back), without the
+  // pass 96.44%. Floors as for the non-default constant above.
   EXPECT_GT(known, size_t(8) * 1000);
   EXPECT_GE(withBack.rate(), 0.9995) << examples.str();
   EXPECT_LT(withoutBack.rate(), 0.995);
