@@ -91,9 +91,9 @@ struct SettingsOption {
 const std::vector<SettingsOption>& settingsOptions() {
   static const std::vector<SettingsOption> options = {
       {"--quality draft", {{"samplesPerPixel", 2}, {"traceStride", 2}, {"maxIterations", 64}}, true},
-      {"--quality high", {{"samplesPerPixel", 16}, {"denoise", true}}, true},
+      {"--quality high", {{"samplesPerPixel", 16}}, true},
       {"--quality reference",
-       {{"tracer", "linear"}, {"samplesPerPixel", 256}, {"reuseRadius", 0}, {"maxIterations", 1 << 20}},
+       {{"tracer", "linear"}, {"samplesPerPixel", 256}, {"reuseRadius", 0}, {"maxIterations", 1 << 20}, {"denoise", false}},
        true},
       {"--spp 7", {{"samplesPerPixel", 7}}, true},
       {"--full-rays-roughness 0.8", {{"fullRaysRoughness", 0.8}}, true},
@@ -108,7 +108,8 @@ const std::vector<SettingsOption>& settingsOptions() {
       // at 1 ray without reuse (reported in issue 17's notes; the glossy tests see no tint either).
       {"--no-prefilter", {{"prefilter", false}}, false},
       {"--prefilter", {{"prefilter", true}}, false, "--no-prefilter"},
-      {"--denoise", {{"denoise", true}}, true},
+      {"--no-denoise", {{"denoise", false}}, true},  // the filter is on by default
+      {"--denoise", {{"denoise", true}}, true, "--no-denoise"},
       {"--quality high --no-denoise", {{"denoise", false}}, true, "--quality high"},
       {"--max-roughness 0.2", {{"maxRoughness", 0.2}}, true},
       {"--mirror-roughness 0.5", {{"mirrorRoughness", 0.5}}, true},

@@ -25,17 +25,12 @@ bool namesMaterialPasses(const FrameSource& s) {
   return !s.f0Channels.empty() || !s.baseColorChannels.empty() || !s.metallicChannel.empty() || !s.materialFile.empty();
 }
 
-// The material passes of the glossy-pass form in `passes` (whose layer is resolved): the F0
-// channels given, or the base colour and metallic channels, by default Blender AOVs named
-// base_color (colour) and metallic (value).
+// The material passes in `passes` (whose layer is resolved): the F0 channels given, or the base
+// colour and metallic channels, by default Blender AOVs named base_color (colour) and metallic
+// (value). The glossy-pass form needs them. The incident form reads them too where they are named
+// or the file holds the default AOVs: the pipeline shades hits on glossy pixels with their own
+// Fresnel (TraceSettings::glossyHitRoughness), whatever form the pass is written in.
 void nameMaterialPasses(const FrameSource& s, GBufferSource& passes) {
-  if (s.outputForm.value_or(OutputForm::Incident) != OutputForm::GlossyPass) {
-    if (namesMaterialPasses(s))
-      throw Error(ErrorCode::InvalidArgument,
-                  "--f0-channels, --base-color-channels, --metallic-channel and --material only apply with "
-                  "--output-form glossy-pass");
-    return;
-  }
   passes.materialFile = s.materialFile;
   if (!s.f0Channels.empty()) {
     if (!s.baseColorChannels.empty() || !s.metallicChannel.empty())
@@ -51,6 +46,11 @@ void nameMaterialPasses(const FrameSource& s, GBufferSource& passes) {
   passes.metallicChannel = !s.metallicChannel.empty() ? s.metallicChannel
                            : prefix.empty()           ? std::string("metallic")
                                                       : prefix + "metallic.X";
+  const bool optional = s.outputForm.value_or(OutputForm::Incident) != OutputForm::GlossyPass && !namesMaterialPasses(s);
+  if (optional && defaultOutputForm(passes).form != OutputForm::GlossyPass) {
+    passes.baseColorChannels.clear();
+    passes.metallicChannel.clear();
+  }
 }
 
 // The passes `s` names, the renderer preset filling in what it leaves unset.

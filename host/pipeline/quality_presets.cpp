@@ -14,7 +14,6 @@ TraceSettings qualityPreset(const std::string& name) {
   }
   if (name == "high") {
     s.samplesPerPixel = 16;
-    s.denoise = true;
     return s;
   }
   if (name == "reference") {

@@ -89,9 +89,7 @@ void toRowMajor(const glm::dmat4& m, float out[16]) {
 int resolveRayStride(const TraceSettings& s) { return s.denoise ? 4 : 1; }
 
 int resolvedRays(const TraceSettings& s) {
-  const int neighbours = (2 * s.reuseRadius + 1) * (2 * s.reuseRadius + 1) - 1;
-  const int stride = resolveRayStride(s);
-  return s.samplesPerPixel + neighbours * ((s.samplesPerPixel + stride - 1) / stride);
+  return s.samplesPerPixel * (2 * s.reuseRadius + 1) * (2 * s.reuseRadius + 1);
 }
 
 void checkKernelArgs(const cl::Kernel& kernel, cl_uint first, const char* names, size_t count) {

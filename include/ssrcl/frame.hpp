@@ -39,10 +39,10 @@ struct FrameSource {
   // Refuse passes the declared conventions do not explain (checkInputConventions).
   bool inputCheck = true;
 
-  // The glossy-pass form also reads the material passes applyGlossyPassForm needs: F0, or base
-  // colour and metallic (by default the layer's Blender AOVs base_color and metallic), from
-  // materialFile when given. Material fields without that form are an error. Unset:
-  // chooseOutputForm decides.
+  // The material passes: F0, or base colour and metallic (by default the layer's Blender AOVs
+  // base_color and metallic), from materialFile when given. The glossy-pass form needs them
+  // (applyGlossyPassForm); either form shades hits on glossy pixels with them, the incident form
+  // reading the default AOVs where the file holds them. outputForm unset: chooseOutputForm decides.
   std::optional<OutputForm> outputForm;
   std::string f0Channels, baseColorChannels, metallicChannel, materialFile;
 

@@ -97,7 +97,10 @@ struct TraceSettings {
   bool prefilter = true;
   Tracer tracer = Tracer::HiZ;
   float linearStepPixels = 0.5f;  // Tracer::Linear step along the ray's major screen axis
-  bool denoise = false;           // edge-aware spatial filter after the resolve
+  // Edge-aware spatial filter after the resolve (the resolve then takes a quarter of each
+  // neighbour's rays). On in every preset but "reference": it gains on both corpora, procedural
+  // and real (docs/BENCHMARKS.md, "Quality presets").
+  bool denoise = true;
   // 2: glossy pixels trace in one pixel of each 2x2 block (a quarter of the rays) and the others
   // resolve from their neighbours' rays (needs reuseRadius >= 1). Mirror pixels always trace.
   int traceStride = 1;
@@ -126,9 +129,10 @@ bool operator!=(const TraceSettings& a, const TraceSettings& b);
 std::string settingsJson(const TraceSettings& settings);
 
 // Named bundles of the settings above (all with the adaptive thickness and prefiltered hits):
-//   "draft"     Hi-Z, 2 rays in one pixel of each 2x2 block, 5x5 reuse, 64 iterations.
-//   "medium"    (the default TraceSettings) Hi-Z, 4 rays, 5x5 ray reuse.
-//   "high"      Hi-Z, 16 rays, 5x5 ray reuse (a quarter of each neighbour's rays), edge-aware filter.
+//   "draft"     Hi-Z, 2 rays in one pixel of each 2x2 block, 5x5 reuse, 64 iterations, filter.
+//   "medium"    (the default TraceSettings) Hi-Z, 4 rays, 5x5 ray reuse, edge-aware filter.
+//   "high"      Hi-Z, 16 rays, 5x5 ray reuse, edge-aware filter.
+// (With the filter the resolve takes a quarter of each neighbour's rays.)
 //   "reference" Linear march at half-pixel steps, 256 rays per pixel, no reuse, no filter: the
 //               best answer screen-space information allows, the yardstick.
 // Their accuracy against Cycles and their cost: docs/BENCHMARKS.md.
