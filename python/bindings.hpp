@@ -13,5 +13,6 @@ void bindDevice(py::module_& m);
 void bindPipeline(py::module_& m);
 void bindIo(py::module_& m);
 void bindEnvironment(py::module_& m);
+void bindTemporal(py::module_& m);
 
 }  // namespace ssrcl::python

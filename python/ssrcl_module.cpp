@@ -11,6 +11,7 @@ PYBIND11_MODULE(ssrcl, m) {
   bindCamera(m);
   bindDevice(m);
   bindEnvironment(m);
+  bindTemporal(m);
   bindPipeline(m);
   bindIo(m);
 }
