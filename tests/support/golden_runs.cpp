@@ -69,9 +69,13 @@ std::string goldenDigest(const std::string& cli, const GoldenRun& run, const std
 std::string goldenDeviceLine(const std::string& cli) {
   const CommandResult r = runCommand(shellQuote(cli) + " devices");
   if (r.exitCode != 0) throw std::runtime_error("ssrcl devices failed:\n" + r.output);
-  // PoCL reports the memory free at the time, which does not change a bit of the output: leave it out
-  // so the digests are checked wherever the same device runs.
+  // What rounds the output is the code PoCL generates, named by its target (HSTR: the triple and
+  // the CPU kind it compiles for), not the processor's brand name nor the memory free at the time:
+  // a recording holds wherever the same target runs (POCL_LLVM_CPU_NAME picks another target).
+  // Other platforms are identified by their whole line, less the free memory.
   const auto identity = [](const std::string& line) {
+    std::smatch target;
+    if (std::regex_search(line, target, std::regex("HSTR: ([^,\\]]+)"))) return "device: PoCL " + target[1].str();
     return "device: " + std::regex_replace(trim(line), std::regex(", [0-9.]+ [KMGT]iB\\]$"), "]");
   };
   std::istringstream lines(r.output);
