@@ -7,18 +7,16 @@
 
 __kernel void color_reduce(__global float4* pyramid, __global const HzbLevel* levels, int dst_level) {
   int x = get_global_id(0), y = get_global_id(1);
-  HzbLevel dst = levels[dst_level];
-  if (x >= dst.width || y >= dst.height) return;
-  HzbLevel src = levels[dst_level - 1];
-  int x0 = 2 * x, y0 = 2 * y;
-  int x1 = min(x0 + 1, src.width - 1), y1 = min(y0 + 1, src.height - 1);
-  __global const float4* s = pyramid + src.offset;
+  ReduceCell c;
+  if (!reduce_cell(levels, dst_level, x, y, &c)) return;
+  __global const float4* s = pyramid + c.src.offset;
+  int w = c.src.width;
   // Edge texels may cover one fine column or row only: average what exists, count each once.
   int sl = dst_level - 1;
-  float4 sum = weighted_texel(s[y0 * src.width + x0], sl);
+  float4 sum = weighted_texel(s[c.y0 * w + c.x0], sl);
   float n = 1.0f;
-  if (x1 != x0) { sum += weighted_texel(s[y0 * src.width + x1], sl); n += 1.0f; }
-  if (y1 != y0) { sum += weighted_texel(s[y1 * src.width + x0], sl); n += 1.0f; }
-  if (x1 != x0 && y1 != y0) { sum += weighted_texel(s[y1 * src.width + x1], sl); n += 1.0f; }
-  pyramid[dst.offset + y * dst.width + x] = sum / n;
+  if (c.x1 != c.x0) { sum += weighted_texel(s[c.y0 * w + c.x1], sl); n += 1.0f; }
+  if (c.y1 != c.y0) { sum += weighted_texel(s[c.y1 * w + c.x0], sl); n += 1.0f; }
+  if (c.x1 != c.x0 && c.y1 != c.y0) { sum += weighted_texel(s[c.y1 * w + c.x1], sl); n += 1.0f; }
+  pyramid[c.dst.offset + y * c.dst.width + x] = sum / n;
 }

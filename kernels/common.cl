@@ -46,6 +46,25 @@ inline float hzb_fetch(__global const float* hzb, __global const HzbLevel* level
   return hzb[l.offset + cell.y * l.width + cell.x];
 }
 
+// The fine texels that the pyramids' reductions (hzb.cl, color_pyramid.cl) combine into texel
+// (x, y) of level dst_level: x0..x1, y0..y1 of the level below, clamped at its edge (a coarse
+// level is ceil(fine / 2), so an edge texel may cover one fine column or row). False outside.
+typedef struct {
+  HzbLevel dst, src;
+  int x0, y0, x1, y1;
+} ReduceCell;
+
+inline bool reduce_cell(__global const HzbLevel* levels, int dst_level, int x, int y, ReduceCell* c) {
+  c->dst = levels[dst_level];
+  if (x >= c->dst.width || y >= c->dst.height) return false;
+  c->src = levels[dst_level - 1];
+  c->x0 = 2 * x;
+  c->y0 = 2 * y;
+  c->x1 = min(c->x0 + 1, c->src.width - 1);
+  c->y1 = min(c->y0 + 1, c->src.height - 1);
+  return true;
+}
+
 // The viewing line through NDC (x, y) as a point on it and a step along it (eye -> scene) that
 // grows planar depth by exactly 1: the point at depth D is origin + (D + origin.z) * step.
 // Built from two homogeneous points, inv_proj * (x, y, 0, 1) and the centre of projection

@@ -4,13 +4,10 @@
 // tracer assumes.
 __kernel void hzb_reduce(__global float* hzb, __global const HzbLevel* levels, int dst_level) {
   int x = get_global_id(0), y = get_global_id(1);
-  HzbLevel dst = levels[dst_level];
-  if (x >= dst.width || y >= dst.height) return;
-  HzbLevel src = levels[dst_level - 1];
-  int x0 = 2 * x, y0 = 2 * y;
-  int x1 = min(x0 + 1, src.width - 1), y1 = min(y0 + 1, src.height - 1);
-  __global const float* s = hzb + src.offset;
-  float m = fmin(fmin(s[y0 * src.width + x0], s[y0 * src.width + x1]),
-                 fmin(s[y1 * src.width + x0], s[y1 * src.width + x1]));
-  hzb[dst.offset + y * dst.width + x] = m;
+  ReduceCell c;
+  if (!reduce_cell(levels, dst_level, x, y, &c)) return;
+  __global const float* s = hzb + c.src.offset;
+  int w = c.src.width;
+  float m = fmin(fmin(s[c.y0 * w + c.x0], s[c.y0 * w + c.x1]), fmin(s[c.y1 * w + c.x0], s[c.y1 * w + c.x1]));
+  hzb[c.dst.offset + y * c.dst.width + x] = m;
 }

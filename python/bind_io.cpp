@@ -76,7 +76,11 @@ void bindIo(py::module_& m) {
       .def_property_readonly("displayCamera", [](const Frame& f) { return f.displayCamera; },
                              "The camera of the display window (the one written into the output's header).")
       .def_property_readonly("windows", [](const Frame& f) { return f.windows; })
-      .def_property_readonly("cameraSource", [](const Frame& f) { return f.cameraSource; });
+      .def_property_readonly("cameraSource", [](const Frame& f) { return f.cameraSource; })
+      .def_property_readonly(
+          "outputForm", [](const Frame& f) { return std::string(outputFormName(f.outputForm)); },
+          "The form its pass is wanted in: loadFrame's outputForm, or the one `ssrcl trace` would take "
+          "('glossy-pass': turn the pipeline's pass into it with applyGlossyPassForm).");
 
   m.def("loadFrame", &loadFrame, py::arg("path"), py::arg("camera") = "", py::arg("renderer") = "blender",
         py::arg("depthKind") = "", py::arg("normalSpace") = "", py::arg("roughness") = py::none(),

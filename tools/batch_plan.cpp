@@ -41,11 +41,21 @@ std::string expand(const std::string& pathTemplate, const FrameJob& job, const c
   return path;
 }
 
+// Members named, not placed: planBatch fills in the rest (camera, output, back-face depth).
 FrameJob framedJob(const FramePattern& pattern, int frame) {
-  return {std::to_string(frame), frame, pattern.format(frame), {}, {}};
+  FrameJob job;
+  job.name = std::to_string(frame);
+  job.frame = frame;
+  job.input = pattern.format(frame);
+  return job;
 }
 
-FrameJob fileJob(const std::string& file) { return {fs::path(file).stem().string(), std::nullopt, file, {}, {}}; }
+FrameJob fileJob(const std::string& file) {
+  FrameJob job;
+  job.name = fs::path(file).stem().string();
+  job.input = file;
+  return job;
+}
 
 std::vector<FrameJob> listInputs(const BatchRequest& r) {
   if (r.inputs.empty()) bad("batch: give the frames to process (a pattern like 'sh010.####.exr', a glob or files)");

@@ -5,17 +5,18 @@
 
 #include "scenes/analytic_scene.hpp"
 #include "ssrcl/error.hpp"
+#include "ssrcl/frame.hpp"
 
 namespace ssrcl::cli {
 
 BenchInput loadBenchFile(const std::string& exr) {
-  GBufferSource source;
+  FrameSource source;
   source.file = exr;
+  Frame frame = loadFrame(source);
   BenchInput in;
   in.name = std::filesystem::path(exr).stem().string();
-  in.gbuffer = loadGBuffer(source);
-  std::filesystem::path p(exr);
-  in.camera = loadCameraJson((p.parent_path() / (p.stem().string() + ".camera.json")).string());
+  in.gbuffer = std::move(frame.gbuffer);
+  in.camera = frame.camera;
   return in;
 }
 
@@ -74,7 +75,8 @@ std::pair<int, int> parseSize(const std::string& text, const std::string& option
 }
 
 void addBenchInputOptions(CLI::App& cmd, BenchInputOptions& o) {
-  cmd.add_option("inputs", o.files, "G-buffer EXRs (Blender naming, <stem>.camera.json beside each)");
+  cmd.add_option("inputs", o.files, "G-buffer EXRs, read as `ssrcl trace` reads them (Blender preset: <stem>.camera.json beside each, else "
+                 "the header camera)");
   cmd.add_option("--sample", o.samples, "Bundled sample: mirror, glossy (default: both, when no input is given)")
       ->check(CLI::IsMember({"mirror", "glossy"}));
   cmd.add_option("--sample-dir", o.sampleDir,

@@ -15,7 +15,8 @@ struct BenchInput {
   Camera camera;
 };
 
-// A G-buffer EXR (Blender naming) with its <stem>.camera.json sidecar.
+// A G-buffer EXR read as `ssrcl trace` reads it with the Blender preset (loadFrame: its
+// <stem>.camera.json sidecar or header camera, the input check, the conventions).
 BenchInput loadBenchFile(const std::string& exr);
 // Where the bundled samples are (a directory holding mirror/ and glossy/): `sampleDir` when given
 // (--sample-dir), else share/ssrcl/samples installed beside the executable's bin/, else the copy

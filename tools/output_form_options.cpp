@@ -24,10 +24,11 @@ void addOutputFormOptions(CLI::App& cmd, OutputFormOptions& o) {
   cmd.add_option("--material", o.materialFile, "glossy-pass: read those passes from this EXR instead")->group(g);
 }
 
-std::string settleOutputForm(GBufferInputOptions& in, const std::string& file) {
-  if (!in.form.form.empty()) return "";
-  const OutputFormChoice chosen = chooseOutputForm(in.sourceFor(file, ""));
-  in.form.form = outputFormName(chosen.form);
+namespace {
+
+// Sets the form and returns the line saying why (empty where no preset chose it).
+std::string settle(OutputFormOptions& form, const OutputFormChoice& chosen) {
+  form.form = outputFormName(chosen.form);
   if (chosen.why.empty()) return "";
   if (chosen.form == OutputForm::GlossyPass)
     return "ssrcl: output form glossy-pass (as Cycles' Glossy Direct + Indirect, Fresnel included): " + chosen.why +
@@ -37,6 +38,18 @@ std::string settleOutputForm(GBufferInputOptions& in, const std::string& file) {
          chosen.why +
          ": add a base_color (Color) and a metallic (Value) AOV fed from each Principled BSDF (the ssrcl Blender "
          "add-on's Set Up does) for the glossy-pass form\n";
+}
+
+}  // namespace
+
+std::string settleOutputForm(GBufferInputOptions& in, const std::string& file) {
+  if (!in.form.form.empty()) return "";
+  return settle(in.form, chooseOutputForm(in.sourceFor(file, "")));
+}
+
+std::string settleOutputForm(GBufferInputOptions& in, const Frame& frame) {
+  if (!in.form.form.empty()) return "";
+  return settle(in.form, {frame.outputForm, frame.outputFormWhy});
 }
 
 void toOutputForm(const OutputFormOptions& o, Image& reflection, const GBuffer& gbuffer, const Camera& camera,

@@ -4,6 +4,7 @@
 #include <ostream>
 #include <string>
 
+#include "ssrcl/frame.hpp"
 #include "ssrcl/glossy_pass_form.hpp"
 #include "ssrcl/io.hpp"
 
@@ -27,6 +28,10 @@ void addOutputFormOptions(CLI::App& cmd, OutputFormOptions& o);
 // saying which and why (empty otherwise), for the caller to print once the frame has loaded, so
 // that a refused input still gets a one-line error. Throws Error(IoError) for an unreadable `file`.
 std::string settleOutputForm(GBufferInputOptions& in, const std::string& file);
+
+// The same for one frame, from the form loadFrame chose for it (Frame::outputForm), so that its
+// file is not opened a second time to choose.
+std::string settleOutputForm(GBufferInputOptions& in, const Frame& frame);
 
 // The pass in the form asked for: unchanged for incident, else times E (applyGlossyPassForm).
 void toOutputForm(const OutputFormOptions& o, Image& reflection, const GBuffer& gbuffer, const Camera& camera,

@@ -38,9 +38,8 @@ int runTrace(TraceOptions& o) {
   }
 
   const EnvironmentMap environment = o.settings.loadEnvironment();  // a bad file fails before any tracing
-  const std::string formNote = settleOutputForm(o.in, o.input);
   const Frame frame = loadFrame(o.in.sourceFor(o.input, o.camera));
-  std::cerr << formNote;
+  std::cerr << settleOutputForm(o.in, frame);
   const Camera& camera = frame.camera;
   const Views views = loadViews(o.in, o.views, o.viewCameras);
   const Views neighbours = loadViews(o.in, o.neighbours, {});

@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "exr_deep_depth.hpp"
+#include "exr_files.hpp"
 #include "exr_header_camera.hpp"
 #include "exr_header_check.hpp"
 #include "ssrcl/error.hpp"
@@ -412,9 +413,29 @@ struct Request {
 
 }  // namespace
 
+namespace detail {
+
+struct ExrFiles::Opened {
+  std::map<std::string, ExrFile> byPath;
+
+  ExrFile& at(const std::string& path) { return byPath.try_emplace(path, path).first->second; }
+};
+
+ExrFiles::ExrFiles() : opened_(std::make_unique<Opened>()) {}
+ExrFiles::~ExrFiles() = default;
+
+bool ExrFiles::holds(const std::string& file, const std::string& names) { return holdsAny(opened_->at(file), names); }
+
+}  // namespace detail
+
 bool holdsChannels(const std::string& path, const std::string& names) { return holdsAny(ExrFile(path), names); }
 
 GBuffer loadGBuffer(const GBufferSource& source) {
+  detail::ExrFiles files;
+  return detail::loadGBuffer(source, files);
+}
+
+GBuffer detail::loadGBuffer(const GBufferSource& source, ExrFiles& exrFiles) {
   GBuffer gbuffer;
   std::vector<Pass> passes = {
       {"color", &gbuffer.color, 3, source.colorFile, source.colorChannels, "Combined.R,Combined.G,Combined.B", "R,G,B"},
@@ -438,14 +459,14 @@ GBuffer loadGBuffer(const GBufferSource& source) {
       passes.push_back({label, pass.first, pass.first == &gbuffer.metallic ? 1 : 3, source.materialFile, *pass.second,
                         "", ""});
 
-  std::map<std::string, ExrFile> files;  // each file is opened once
+  ExrFiles::Opened& files = exrFiles.opened();  // each file is opened once
 
   // Optional glossy passes, read where all nine channels are there (Blender multilayer naming).
   Image glossDir, glossInd, glossCol;
   const std::string noNames;
   const std::string& colorPath = source.colorFile.empty() ? source.file : source.colorFile;
   if (source.glossyPasses && !source.layer.empty() && !colorPath.empty()) {
-    ExrFile& file = files.try_emplace(colorPath, colorPath).first->second;
+    ExrFile& file = files.at(colorPath);
     bool present = true;
     for (const char* pass : {"GlossDir", "GlossInd", "GlossCol"})
       for (const char* c : {"R", "G", "B"}) present = present && file.find(source.layer + "." + pass + "." + c).part >= 0;
@@ -463,7 +484,7 @@ GBuffer loadGBuffer(const GBufferSource& source) {
     const std::string name = !source.depthChannel.empty() ? source.depthChannel
                              : source.layer.empty()       ? std::string("Z")
                                                           : source.layer + ".Depth.Z";
-    if (!path.empty() && holdsAny(files.try_emplace(path, path).first->second, name))
+    if (!path.empty() && holdsAny(files.at(path), name))
       passes.push_back({"depth", &gbuffer.depth, 1, source.positionFile, source.depthChannel, "Depth.Z", "Z"});
   }
 
@@ -475,8 +496,7 @@ GBuffer loadGBuffer(const GBufferSource& source) {
   const bool deepBack = !source.backDepthFile.empty() && detail::isDeepExr(backPath);
   std::string backChannel = source.backDepthChannel;
   if (backChannel.empty() && !source.backDepthFile.empty()) backChannel = "ViewLayer.Depth.Z";
-  if (backChannel.empty() && !backPath.empty() && holdsAny(files.try_emplace(backPath, backPath).first->second,
-                                                           "BackFaces.Depth.Z"))
+  if (backChannel.empty() && !backPath.empty() && holdsAny(files.at(backPath), "BackFaces.Depth.Z"))
     backChannel = "BackFaces.Depth.Z";
   if (!deepBack && !backChannel.empty())
     passes.push_back({"back-face depth", &gbuffer.backDepth, 1, backPath, backChannel, "", ""});
@@ -486,7 +506,7 @@ GBuffer loadGBuffer(const GBufferSource& source) {
     const std::string& path = pass.file.empty() ? source.file : pass.file;
     if (path.empty())
       throw Error(ErrorCode::InvalidArgument, std::string("no input file given for the ") + pass.label + " pass");
-    ExrFile& file = files.try_emplace(path, path).first->second;
+    ExrFile& file = files.at(path);
     std::vector<std::string> names;
     if (!pass.names.empty()) {
       names = splitNames(chooseAlternative(file, pass.names, pass.label));

@@ -5,7 +5,9 @@
 
 #include <filesystem>
 
+#include "exr_files.hpp"
 #include "renderer_presets.hpp"
+#include "shading/glossy_pass_form.hpp"
 #include "ssrcl/error.hpp"
 #include "ssrcl/pipeline.hpp"
 
@@ -30,7 +32,7 @@ bool namesMaterialPasses(const FrameSource& s) {
 // (value). The glossy-pass form needs them. The incident form reads them too where they are named
 // or the file holds the default AOVs: the pipeline shades hits on glossy pixels with their own
 // Fresnel (TraceSettings::glossyHitRoughness), whatever form the pass is written in.
-void nameMaterialPasses(const FrameSource& s, GBufferSource& passes) {
+void nameMaterialPasses(const FrameSource& s, GBufferSource& passes, detail::ExrFiles& files) {
   passes.materialFile = s.materialFile;
   if (!s.f0Channels.empty()) {
     if (!s.baseColorChannels.empty() || !s.metallicChannel.empty())
@@ -47,14 +49,14 @@ void nameMaterialPasses(const FrameSource& s, GBufferSource& passes) {
                            : prefix.empty()           ? std::string("metallic")
                                                       : prefix + "metallic.X";
   const bool optional = s.outputForm.value_or(OutputForm::Incident) != OutputForm::GlossyPass && !namesMaterialPasses(s);
-  if (optional && defaultOutputForm(passes).form != OutputForm::GlossyPass) {
+  if (optional && detail::defaultOutputForm(passes, files).form != OutputForm::GlossyPass) {
     passes.baseColorChannels.clear();
     passes.metallicChannel.clear();
   }
 }
 
 // The passes `s` names, the renderer preset filling in what it leaves unset.
-GBufferSource passesOf(const FrameSource& s) {
+GBufferSource passesOf(const FrameSource& s, detail::ExrFiles& files) {
   const detail::RendererPreset& preset = detail::rendererPreset(s.renderer);
   GBufferSource p;
   p.file = s.file;
@@ -75,7 +77,7 @@ GBufferSource passesOf(const FrameSource& s) {
   p.glossyPasses = s.glossyPasses;
   p.backDepthFile = s.backDepthFile;
   p.backDepthChannel = s.backDepthChannel;
-  nameMaterialPasses(s, p);
+  nameMaterialPasses(s, p, files);
   return p;
 }
 
@@ -90,6 +92,16 @@ Enum named(const std::string& name, const Enum (&values)[N], const char* (*nameO
   throw Error(ErrorCode::InvalidArgument, std::string(what) + ": unknown value '" + name + "' (known: " + known + ")");
 }
 
+OutputFormChoice chooseOutputForm(const FrameSource& s, detail::ExrFiles& files) {
+  if (s.outputForm) return {*s.outputForm, ""};
+  if (namesMaterialPasses(s)) return {OutputForm::GlossyPass, ""};  // naming the material passes asks for the form that reads them
+  if (!detail::rendererPreset(s.renderer).glossyPassByDefault) return {OutputForm::Incident, ""};
+  FrameSource probe = s;
+  probe.outputForm = OutputForm::GlossyPass;
+  const DefaultOutputForm d = detail::defaultOutputForm(passesOf(probe, files), files);
+  return {d.form, d.why};
+}
+
 }  // namespace
 
 std::string sidecarCameraPath(const std::string& exr) {
@@ -98,24 +110,22 @@ std::string sidecarCameraPath(const std::string& exr) {
 }
 
 OutputFormChoice chooseOutputForm(const FrameSource& s) {
-  if (s.outputForm) return {*s.outputForm, ""};
-  if (namesMaterialPasses(s)) return {OutputForm::GlossyPass, ""};  // naming the material passes asks for the form that reads them
-  if (!detail::rendererPreset(s.renderer).glossyPassByDefault) return {OutputForm::Incident, ""};
-  FrameSource probe = s;
-  probe.outputForm = OutputForm::GlossyPass;
-  const DefaultOutputForm d = defaultOutputForm(passesOf(probe));
-  return {d.form, d.why};
+  detail::ExrFiles files;
+  return chooseOutputForm(s, files);
 }
 
 Frame loadFrame(const FrameSource& given) {
+  detail::ExrFiles files;  // each file's headers read once: for the form's material passes, then to load
+  const OutputFormChoice form = chooseOutputForm(given, files);
   FrameSource s = given;
-  s.outputForm = chooseOutputForm(given).form;
+  s.outputForm = form.form;
   Frame frame;
-  frame.outputForm = *s.outputForm;
-  frame.passes = passesOf(s);
+  frame.outputForm = form.form;
+  frame.outputFormWhy = form.why;
+  frame.passes = passesOf(s, files);
   const GBufferSource& source = frame.passes;
   GBuffer& g = frame.gbuffer;
-  g = loadGBuffer(source);
+  g = detail::loadGBuffer(source, files);
 
   const std::string cameraPath =
       !s.camera.empty() ? s.camera : sidecarCameraPath(s.file.empty() ? s.colorFile : s.file);

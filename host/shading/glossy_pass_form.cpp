@@ -7,6 +7,8 @@
 #include <glm/matrix.hpp>
 #include <vector>
 
+#include "shading/glossy_pass_form.hpp"
+#include "io/exr_files.hpp"
 #include "ssrcl/error.hpp"
 #include "ssrcl/specular_albedo.hpp"
 #include "pipeline/settings_validation.hpp"
@@ -16,6 +18,11 @@ namespace ssrcl {
 const char* outputFormName(OutputForm form) { return form == OutputForm::GlossyPass ? "glossy-pass" : "incident"; }
 
 DefaultOutputForm defaultOutputForm(const GBufferSource& source) {
+  detail::ExrFiles files;
+  return detail::defaultOutputForm(source, files);
+}
+
+DefaultOutputForm detail::defaultOutputForm(const GBufferSource& source, ExrFiles& files) {
   const std::string& file = source.materialFile.empty() ? source.file : source.materialFile;
   std::vector<std::string> passes = {source.f0Channels};  // each a channel list, alternatives kept apart
   if (source.f0Channels.empty()) passes = {source.baseColorChannels, source.metallicChannel};
@@ -24,7 +31,7 @@ DefaultOutputForm defaultOutputForm(const GBufferSource& source) {
   if (file.empty()) return {OutputForm::Incident, "no file to read material passes from"};
   std::string held, missing;
   for (const std::string& p : passes) {
-    std::string& list = holdsChannels(file, p) ? held : missing;
+    std::string& list = files.holds(file, p) ? held : missing;
     list += (list.empty() ? "" : " and ") + p;
   }
   if (missing.empty()) return {OutputForm::GlossyPass, file + " holds " + held};

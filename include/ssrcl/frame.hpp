@@ -62,6 +62,7 @@ struct Frame {
   // The form its pass is wanted in (FrameSource::outputForm, or chooseOutputForm's): for
   // GlossyPass, turn the pipeline's reflection into it with applyGlossyPassForm.
   OutputForm outputForm = OutputForm::Incident;
+  std::string outputFormWhy;  // OutputFormChoice::why where chooseOutputForm chose it
 };
 
 // The form an unset FrameSource::outputForm takes: glossy-pass where material fields are given,

@@ -24,22 +24,14 @@ import bpy  # noqa: E402
 import make_corpus  # noqa: E402  (its scene builders and render settings)
 from mathutils import Euler, Vector  # noqa: E402
 from scene_common import render_and_write  # noqa: E402
+from script_args import script_args, take_option  # noqa: E402
 
 TRUCK_M = 2.0
 PAN_DEGREES = 30.0
 
 
-def take_option(args, name, default):
-    if name not in args:
-        return default
-    i = args.index(name)
-    value = int(args[i + 1])
-    del args[i:i + 2]
-    return value
-
-
 def main():
-    args = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+    args = script_args()
     frames = take_option(args, "--frames", 24)
     scored = take_option(args, "--scored", 4)
     width = take_option(args, "--width", 480)

@@ -22,7 +22,8 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 sys.path.insert(0, os.path.join(HERE, "..", "corpus"))
 import make_corpus as corpus  # noqa: E402
-from scene_common import parse_outdir, render_and_write, reset_scene  # noqa: E402
+from scene_common import render_and_write, reset_scene  # noqa: E402
+from script_args import parse_outdir  # noqa: E402
 
 WIDTH, HEIGHT = 240, 135
 SAMPLES = 1024

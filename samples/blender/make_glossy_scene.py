@@ -25,8 +25,9 @@ import bpy
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import export_camera  # noqa: E402  (needs the path tweak above)
 from scene_common import (HEIGHT, WIDTH, add_aov_output, add_object,  # noqa: E402
-                          build_camera, build_world, configure_render, parse_outdir,
-                          render_and_write, reset_scene)
+                          build_camera, build_world, configure_render, render_and_write,
+                          reset_scene)
+from script_args import parse_outdir  # noqa: E402
 
 SAMPLES = 1024
 # Floor stripes, left to right in the image: roughness per band and the image columns where

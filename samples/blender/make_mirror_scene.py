@@ -15,7 +15,8 @@ import bpy
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from scene_common import (add_object, build_camera, build_world, configure_render,  # noqa: E402
-                          make_material, parse_outdir, render_and_write, reset_scene)
+                          make_material, render_and_write, reset_scene)
+from script_args import parse_outdir  # noqa: E402
 
 SAMPLES = 64
 

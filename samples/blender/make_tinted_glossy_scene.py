@@ -16,7 +16,8 @@ import bpy
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import make_glossy_scene  # noqa: E402
-from scene_common import WIDTH, parse_outdir, render_and_write, reset_scene  # noqa: E402
+from scene_common import WIDTH, render_and_write, reset_scene  # noqa: E402
+from script_args import parse_outdir  # noqa: E402
 
 BASE_COLOR = (0.95, 0.64, 0.54)
 METALLIC_LEFT, METALLIC_RIGHT, METALLIC_EDGE_COLUMN = 1.0, 0.25, 320

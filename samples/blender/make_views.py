@@ -27,6 +27,7 @@ sys.path.insert(0, os.path.join(HERE, "..", "corpus"))
 import bpy  # noqa: E402
 import make_corpus  # noqa: E402  (its scene builders and render settings)
 from scene_common import render_and_write  # noqa: E402
+from script_args import script_args, take_option  # noqa: E402
 
 CUBE = {"px": (1, 0, 0), "nx": (-1, 0, 0), "py": (0, 1, 0), "ny": (0, -1, 0), "pz": (0, 0, 1), "nz": (0, 0, -1)}
 
@@ -81,12 +82,8 @@ def render_views(name, outdir, views):
 
 
 def main():
-    args = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
-    views = ["reverse", "wide"]
-    if "--views" in args:
-        i = args.index("--views")
-        views = args[i + 1].split(",")
-        del args[i:i + 2]
+    args = script_args()
+    views = take_option(args, "--views", ["reverse", "wide"], lambda v: v.split(","))
     unknown = [n for n in args[1:] if n not in make_corpus.SCENE_BY_NAME] + \
               [v for v in views if v not in ("reverse", "wide", "cube")]
     if len(args) < 2 or unknown:

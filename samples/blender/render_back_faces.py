@@ -20,6 +20,7 @@ sys.path.insert(0, HERE)
 sys.path.insert(0, os.path.join(HERE, "..", "corpus"))
 sys.path.insert(0, os.path.join(HERE, "..", "real"))
 from ssrcl_addon import back_faces  # noqa: E402
+from script_args import outdir_and_names, script_args  # noqa: E402
 
 
 def build_scene(corpus, spec, scratch):
@@ -58,20 +59,15 @@ def render_back(corpus, spec, outdir, scratch):
 
 
 def main():
-    args = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+    args = script_args()
+    usage = ("usage: blender -b --factory-startup --python render_back_faces.py -- corpus|real <outdir> "
+             "[scene names...]")
     if len(args) < 2 or args[0] not in ("corpus", "real"):
-        print("usage: blender -b --factory-startup --python render_back_faces.py -- corpus|real <outdir> "
-              "[scene names...]", file=sys.stderr)
+        print(usage, file=sys.stderr)
         sys.exit(2)
-    corpus, outdir = args[0], os.path.abspath(args[1])
+    corpus = args[0]
     module = __import__("make_real_corpus" if corpus == "real" else "make_corpus")
-    names = args[2:] or [s["name"] for s in module.SCENES]
-    unknown = [n for n in names if n not in module.SCENE_BY_NAME]
-    if unknown:
-        print("unknown scene(s): %s\nscenes: %s" % (" ".join(unknown), " ".join(module.SCENE_BY_NAME)),
-              file=sys.stderr)
-        sys.exit(2)
-    os.makedirs(outdir, exist_ok=True)
+    outdir, names = outdir_and_names(args[1:], module.SCENE_BY_NAME, usage)
     with tempfile.TemporaryDirectory() as scratch:  # what a real scene's build writes (its HDRI)
         for name in names:
             render_back(corpus, module.SCENE_BY_NAME[name], outdir, scratch)

@@ -142,17 +142,6 @@ def configure_render(scene, samples):
     settings.use_preview = False
 
 
-def parse_outdir(script_name):
-    args = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
-    if len(args) != 1:
-        print("usage: blender -b --factory-startup --python %s -- <outdir>" % script_name,
-              file=sys.stderr)
-        sys.exit(2)
-    outdir = os.path.abspath(args[0])
-    os.makedirs(outdir, exist_ok=True)
-    return outdir
-
-
 def render_and_write(scene, outdir, stem):
     """Render the scene camera to <outdir>/<stem>.exr and write <outdir>/<stem>.camera.json."""
     exr_path = os.path.join(outdir, stem + ".exr")

@@ -37,6 +37,7 @@ from make_glossy_scene import (configure_glossy_render, make_diffuse_material,  
                                make_emission_material)
 from scene_common import (add_aov_output, build_world, render_and_write,  # noqa: E402
                           reset_scene)
+from script_args import outdir_and_names, script_args  # noqa: E402
 
 LAYER = "ViewLayer"
 DIFFUSE_AOV = 1.0  # AOV roughness of every non-reflector ("no GGX lobe")
@@ -718,19 +719,9 @@ def render_scene(spec, outdir):
 
 
 def main():
-    args = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
-    if not args:
-        print("usage: blender -b --factory-startup --python make_corpus.py -- <outdir> "
-              "[scene names...]\nscenes: " + " ".join(SCENE_BY_NAME), file=sys.stderr)
-        sys.exit(2)
-    outdir = os.path.abspath(args[0])
-    names = args[1:] or [s["name"] for s in SCENES]
-    unknown = [n for n in names if n not in SCENE_BY_NAME]
-    if unknown:
-        print("unknown scene(s): %s\nscenes: %s" % (" ".join(unknown), " ".join(SCENE_BY_NAME)),
-              file=sys.stderr)
-        sys.exit(2)
-    os.makedirs(outdir, exist_ok=True)
+    outdir, names = outdir_and_names(
+        script_args(), SCENE_BY_NAME,
+        "usage: blender -b --factory-startup --python make_corpus.py -- <outdir> [scene names...]")
     write_manifest(outdir)
     for name in names:
         render_scene(SCENE_BY_NAME[name], outdir)

@@ -24,6 +24,7 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 import make_corpus  # noqa: E402  (also puts samples/blender on sys.path)
+from script_args import outdir_and_names, script_args  # noqa: E402
 
 ENV_WIDTH, ENV_HEIGHT = 512, 256
 # The HDR the scenes use; main() points it at the one it writes. render_eevee.py uses the default.
@@ -136,18 +137,9 @@ MAPPING_CHECKS = [dict(name="env_mapping", samples=16, build=build_mapping_check
 
 def main():
     global environment_path
-    args = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
-    if not args:
-        print("usage: ... make_env_corpus.py -- <outdir> [scene names...]\nscenes: "
-              + " ".join(SCENE_BY_NAME), file=sys.stderr)
-        sys.exit(2)
-    outdir = os.path.abspath(args[0])
-    names = args[1:] or list(SCENE_BY_NAME)
-    unknown = [n for n in names if n not in SCENE_BY_NAME]
-    if unknown:
-        print("unknown scene(s): " + " ".join(unknown), file=sys.stderr)
-        sys.exit(2)
-    os.makedirs(outdir, exist_ok=True)
+    args = script_args()
+    outdir, names = outdir_and_names(args, SCENE_BY_NAME,
+                                     "usage: ... make_env_corpus.py -- <outdir> [scene names...]")
     environment_path = os.path.join(outdir, "sky.exr")
     write_sky(environment_path)
     make_corpus.write_manifest(outdir, SCENES)

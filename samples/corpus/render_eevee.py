@@ -25,6 +25,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import make_corpus  # noqa: E402  (also puts samples/blender on sys.path)
 import make_env_corpus  # noqa: E402
 from scene_common import HEIGHT, WIDTH, reset_scene  # noqa: E402
+from script_args import outdir_and_names, script_args  # noqa: E402
 
 
 def black_world_for_glossy(scene):
@@ -89,13 +90,9 @@ def configure_eevee(scene, world_probe=False):
 
 
 def main():
-    args = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
-    if not args:
-        print("usage: ... render_eevee.py -- <outdir> [scene names...]", file=sys.stderr)
-        sys.exit(2)
-    outdir = os.path.abspath(args[0])
-    names = args[1:] or [s["name"] for s in make_corpus.SCENES]
-    os.makedirs(outdir, exist_ok=True)
+    outdir, names = outdir_and_names(script_args(), SCENE_BY_NAME,
+                                     "usage: ... render_eevee.py -- <outdir> [scene names...]",
+                                     default=make_corpus.SCENE_BY_NAME)
     for name in names:
         spec = SCENE_BY_NAME[name]
         bpy.ops.wm.read_factory_settings(use_empty=False)

@@ -58,6 +58,7 @@ sys.path.insert(0, HERE)
 sys.path.insert(0, os.path.join(HERE, "..", "corpus"))
 sys.path.insert(0, os.path.join(HERE, "..", "blender"))
 import make_corpus  # noqa: E402  (scene helpers, render settings; puts samples/blender on sys.path)
+from script_args import outdir_and_names, script_args, take_option  # noqa: E402
 import make_env_corpus  # noqa: E402  (environment_world)
 import render_eevee  # noqa: E402  (configure_eevee)
 from scene_common import render_and_write, reset_scene  # noqa: E402
@@ -474,30 +475,18 @@ def render_move(spec, outdir, frames):
 
 
 def main():
-    args = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+    args = script_args()
     mode = args.pop(0) if args and args[0] in ("--eevee", "--move") else None
-    frames = 6
-    if "--frames" in args:
-        i = args.index("--frames")
-        frames = int(args[i + 1])
-        del args[i:i + 2]
-    if not args or (mode == "--move" and len(args) != 2):
-        print("usage: ... make_real_corpus.py -- [--eevee] <outdir> [scene names...]\n"
-              "       ... make_real_corpus.py -- --move <outdir> <scene> [--frames N]\n"
-              "scenes: " + " ".join(SCENE_BY_NAME), file=sys.stderr)
-        sys.exit(2)
-    outdir = os.path.abspath(args[0])
-    names = args[1:] or list(SCENE_BY_NAME)
-    unknown = [n for n in names if n not in SCENE_BY_NAME]
-    if unknown:
-        print("unknown scene(s): %s\nscenes: %s" % (" ".join(unknown), " ".join(SCENE_BY_NAME)),
-              file=sys.stderr)
-        sys.exit(2)
-    if mode != "--eevee" and shutil.which("oiiotool") is None:
+    frames = take_option(args, "--frames", 6)
+    usage = ("usage: ... make_real_corpus.py -- [--eevee] <outdir> [scene names...]\n"
+             "       ... make_real_corpus.py -- --move <outdir> <scene> [--frames N]")
+    if mode == "--move" and len(args) != 2:
+        args = []  # the usage
+    if args and mode != "--eevee" and shutil.which("oiiotool") is None:
         print("oiiotool not found (apt-get install openimageio-tools): the Cycles renders are "
               "rewritten half but Depth with it", file=sys.stderr)
         sys.exit(2)
-    os.makedirs(outdir, exist_ok=True)
+    outdir, names = outdir_and_names(args, SCENE_BY_NAME, usage)
     if mode == "--move":
         render_move(SCENE_BY_NAME[names[0]], outdir, frames)
         return

@@ -38,6 +38,7 @@ from mathutils import Matrix, Vector
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import make_real_corpus as real  # noqa: E402  (scenes, render settings, compact_exr)
 import render_eevee  # noqa: E402  (configure_eevee; make_real_corpus put samples/corpus on the path)
+from script_args import outdir_and_names, script_args  # noqa: E402  (samples/blender: on the path too)
 from scene_common import render_and_write  # noqa: E402
 
 FRAMES = int(os.environ.get("SSRCL_SHOT_FRAMES", 12))
@@ -152,22 +153,12 @@ def write_manifest(outdir, shot):
 
 
 def main():
-    args = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+    args = script_args()
     eevee = bool(args) and args[0] == "--eevee"
     if eevee:
         args.pop(0)
-    if not args:
-        print("usage: ... make_shots.py -- [--eevee] <outdir> [shots...]\nshots: "
-              + " ".join(SHOT_BY_NAME), file=sys.stderr)
-        sys.exit(2)
-    outdir = os.path.abspath(args[0])
-    names = args[1:] or list(SHOT_BY_NAME)
-    unknown = [n for n in names if n not in SHOT_BY_NAME]
-    if unknown:
-        print("unknown shot(s): %s\nshots: %s" % (" ".join(unknown), " ".join(SHOT_BY_NAME)),
-              file=sys.stderr)
-        sys.exit(2)
-    os.makedirs(outdir, exist_ok=True)
+    outdir, names = outdir_and_names(args, SHOT_BY_NAME,
+                                     "usage: ... make_shots.py -- [--eevee] <outdir> [shots...]", kind="shot")
     shots = [SHOT_BY_NAME[n] for n in names]
     for shot in shots:
         if eevee:

@@ -1,14 +1,36 @@
-// The README's C++ example, built against the installed library through its public API only
-// (tests/consumer/run.sh): reads a Blender frame with loadFrame (its sidecar camera, the input
-// check), traces it into the caller's memory and writes the pass. Also checks that the version
-// matches the headers, that a frame the declared conventions do not explain is refused, and that
-// misuse is an error.   ssrcl_consumer <G-buffer EXR> <output EXR>
+// A user's program, built against the installed library through its public API only
+// (tests/consumer/run.sh): docs/library.md's example (traceFrame: loadFrame with its sidecar camera
+// and the input check, trace, the pass written); a trace into the caller's memory with progress
+// reports; the version matching the headers; a frame the declared conventions do not explain
+// refused; misuse an error.   ssrcl_consumer <G-buffer EXR> <output EXR>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
+#include <string>
 #include <vector>
 
-#include "ssrcl/ssrcl.hpp"
+#include <ssrcl/ssrcl.hpp>
+
+// docs/library.md's example, to the letter (tests/docs/check_library_example.sh): begin
+// Traces a Blender frame (its camera beside it or in its header) into a reflection pass EXR.
+void traceFrame(const char* input, const char* output) {
+  ssrcl::FrameSource source;
+  source.file = input;                             // Blender naming and conventions by default
+  ssrcl::Frame frame = ssrcl::loadFrame(source);  // passes, camera, input check, conventions
+
+  ssrcl::Device device(ssrcl::DeviceType::Default);  // or GPU, CPU, an index, openDevice("1")
+  ssrcl::Pipeline pipeline(device);
+  ssrcl::setFrame(pipeline, frame);  // frame must outlive execute()
+  pipeline.settings() = ssrcl::qualityPreset("medium");
+  pipeline.commit();  // validates, compiles kernels once per device, allocates
+  pipeline.execute();
+  ssrcl::Image pass = pipeline.output("reflection");
+  if (frame.outputForm == ssrcl::OutputForm::GlossyPass)  // a Blender file with base_color, metallic AOVs
+    ssrcl::applyGlossyPassForm(pass, frame.gbuffer, frame.camera, std::nullopt);
+  ssrcl::writeReflectionExr(output, pass, pipeline.output("distance"), frame.windows);
+}
+// docs/library.md's example: end
 
 int main(int argc, char** argv) {
   if (argc != 3) {
@@ -63,10 +85,14 @@ int main(int argc, char** argv) {
       std::printf("no reflection found (%zu pixels) or no progress reported (%d)\n", hits, reports);
       return 1;
     }
-    ssrcl::Image pass = pipeline.output("reflection");
-    if (frame.outputForm == ssrcl::OutputForm::GlossyPass)  // a Blender file with base_color, metallic AOVs
-      ssrcl::applyGlossyPassForm(pass, frame.gbuffer, frame.camera, std::nullopt);
-    ssrcl::writeReflectionExr(argv[2], pass, pipeline.output("distance"), frame.windows);
+
+    traceFrame(argv[1], argv[2]);
+    std::error_code ec;
+    const auto written = std::filesystem::file_size(argv[2], ec);
+    if (ec || written == 0) {
+      std::printf("traceFrame wrote no %s\n", argv[2]);
+      return 1;
+    }
   } catch (const ssrcl::Error& e) {
     std::printf("ssrcl error (%s): %s\n", ssrcl::errorCodeName(e.code()), e.what());
     return 1;

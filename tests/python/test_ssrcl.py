@@ -203,6 +203,9 @@ class CliEquivalenceOfOptionsTest(unittest.TestCase):
         with tempfile.TemporaryDirectory() as tmp:
             cli = cli_pass(tmp, [TINTED, "--seed", "5", "--spp", "1"])
         frame = ssrcl.loadFrame(TINTED)
+        self.assertEqual(frame.outputForm, "glossy-pass")  # the choice loadFrame made while reading
+        self.assertEqual(ssrcl.loadFrame(GLOSSY).outputForm, "incident")
+        self.assertEqual(ssrcl.loadFrame(TINTED, outputForm="incident").outputForm, "incident")
         glossy = ssrcl.applyGlossyPassForm(python_pass(frame, ssrcl.TraceSettings(seed=5, samplesPerPixel=1)), frame)
         np.testing.assert_array_equal(bits(glossy), bits(cli))
 
