@@ -469,6 +469,7 @@ int main(int argc, char** argv) {
                                   {"p99_relative", sc.error.p99},
                                   {"firefly_share", sc.error.fireflies},
                                   {"answered_share", answeredShare[s]},
+                                  {"answered_psnr_db", sc.answered.psnr},
                                   {"answered_p99_relative", sc.answered.p99},
                                   {"answered_fireflies", sc.answered.fireflies},
                                   {"answered_bias", sc.answered.bias},
