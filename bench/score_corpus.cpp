@@ -1,8 +1,13 @@
 // Scores configurations of ssrcl against Cycles' path-traced glossy passes over a corpus of
 // scenes (samples/corpus) and prints one table: per scene PSNR, then the means over the tuning
 // scenes, the held-out scenes and all, with time, the share of squared error on low-confidence
-// pixels and the 99th percentile of per-pixel error (speckle). See tests/support/cycles_reference.hpp
-// for what is compared with what, and scripts/score-corpus.sh for the command.
+// pixels and the 99th percentile of per-pixel error; then speckle, over the pixels every scored pass
+// answers (A >= 0.5, so the off-screen hole, which no filter can fix, is left out): the 99th
+// percentile of error, the fireflies and the mean signed error there (the paired difference of two
+// rows that trace the same rays is their bias against each other), and with --noise the pass's own
+// noise, which needs no reference: the 99th percentile of |pass(seed) - pass(seed + 1)| / sqrt 2. See
+// tests/support/cycles_reference.hpp for what is compared with what, and scripts/score-corpus.sh
+// for the command.
 //
 //   ssrcl_score_corpus --corpus samples/corpus [--configs medium,high,...] [--scenes a,b] [--json out.json]
 //   ssrcl_score_corpus render.exr ... [--configs ...]   (renders of one's own, split "file")
@@ -11,6 +16,9 @@
 //   ssrcl_score_corpus --corpus samples/corpus/environment --environment samples/corpus/environment/sky.exr
 //       --configs "medium;medium:fill=0;eevee"   (environment fill: filled, premultiplied, EEVEE)
 //   ssrcl_score_corpus --corpus samples/real   (scenes with an "environment" in corpus.json get that fill)
+//   ssrcl_score_corpus --corpus samples/real --configs "pass:out/before;pass:out/after"
+//       (passes another build of `ssrcl trace --output-form glossy-pass` wrote: <dir>/<scene>.exr; with
+//        --noise, those of the next seed in <dir>/seed2/<scene>.exr)
 //
 // A configuration is a preset name, optionally with settings after a colon:
 //   medium   high:spp=32   medium:thickness=0.01   medium:model=constant,thickness=0.005
@@ -42,6 +50,7 @@
 #include "bench_report.hpp"
 #include "ssrcl/ssrcl.hpp"
 #include "support/cycles_reference.hpp"
+#include "support/shot_metric.hpp"
 
 namespace {
 
@@ -59,6 +68,7 @@ struct Config {
   bool fill = true;             // with --environment: misses take it (fill=0: the premultiplied pass)
   size_t views = 0;             // auxiliary views used (SIZE_MAX: all found)
   bool backDepth = false;       // the scene's back-face depth pass, <scene>.back.exr beside it
+  std::string passDir;          // "pass:DIR": score <DIR>/<scene>.exr, a glossy-pass form pass written elsewhere
   ssrcl::TraceSettings settings;
 };
 
@@ -74,6 +84,13 @@ Config parseConfig(const std::string& spec) {
   Config c{spec};
   const auto colon = spec.find(':');
   const std::string preset = spec.substr(0, colon);
+  if (preset == "pass") {  // pass:DIR, e.g. another build's passes, scored by this build's measure
+    if (colon == std::string::npos || colon + 1 == spec.size())
+      throw std::runtime_error("configuration '" + spec + "': pass takes a directory, pass:DIR");
+    c.passDir = spec.substr(colon + 1);
+    c.glossyPassForm = true;
+    return c;
+  }
   if (preset == "eevee") {  // eevee, or eevee:form=glossy-pass (Specular Light x Specular Color)
     c.eevee = true;
     if (colon == std::string::npos) return c;
@@ -229,7 +246,39 @@ struct Score {
   bool present = false;
   double ms = 0;
   ssrcl::test::ReferenceError error;
+  ssrcl::test::ReferenceError answered;  // over the pixels every pass of the scene answers
+  double noiseP99 = NAN;                 // --noise: p99 of |pass(seed) - pass(seed + 1)| / sqrt 2 there, / peak
 };
+
+// The 99th percentile over `group` of the channel mean of |a - b| / sqrt 2: one pass's own noise,
+// from two of its seeds, relative to the peak.
+double noiseP99(const ssrcl::test::CyclesReference& ref, const ssrcl::Image& a, const ssrcl::Image& b,
+                const std::vector<size_t>& group) {
+  std::vector<double> perPixel;
+  for (size_t k : group) {
+    const size_t i = size_t(ref.pixels[k]);
+    double sum = 0;
+    for (int c = 0; c < 3; ++c) sum += std::abs(a.data[a.channels * i + c] - b.data[b.channels * i + c]);
+    perPixel.push_back(ref.scale[k] * sum / (3 * std::sqrt(2.0)));
+  }
+  if (perPixel.empty()) return NAN;
+  std::nth_element(perPixel.begin(), perPixel.begin() + perPixel.size() * 99 / 100, perPixel.end());
+  return perPixel[perPixel.size() * 99 / 100] / ref.peak;
+}
+
+// The reflector pixels (indices into ref.pixels) that every pass answers, A >= 0.5; a pass without
+// A (EEVEE's) answers all.
+std::vector<size_t> answeredByAll(const std::vector<size_t>& all, const std::vector<const ssrcl::Image*>& passes,
+                                  const ssrcl::test::CyclesReference& ref) {
+  std::vector<size_t> answered;
+  for (size_t k : all) {
+    const size_t i = size_t(ref.pixels[k]);
+    if (std::all_of(passes.begin(), passes.end(),
+                    [&](const ssrcl::Image* p) { return p->channels != 4 || p->data[4 * i + 3] >= 0.5f; }))
+      answered.push_back(k);
+  }
+  return answered;
+}
 
 }  // namespace
 
@@ -240,6 +289,7 @@ int main(int argc, char** argv) {
   std::string dumpDir, environmentPath, viewsDir;
   std::vector<std::string> files;
   int repetitions = 1;
+  bool noise = false;
   app.add_option("files", files, "Renders to score instead of the corpus (Blender passes, IndexOB 1 = reflector)");
   app.add_option("--corpus", corpus, "Directory with corpus.json and the scenes")->capture_default_str();
   app.add_option("--configs", configList, "Comma-separated configurations (';' also separates)")->capture_default_str();
@@ -251,6 +301,9 @@ int main(int argc, char** argv) {
                  "Environment fill from this equirect EXR for every scene (default: each scene's corpus.json "
                  "\"environment\", none where it has none; configs with fill=0 go without)");
   app.add_option("--views", viewsDir, "Auxiliary views of each scene: <dir>/<scene>.*.exr (default <corpus>/views)");
+  app.add_flag("--noise", noise,
+               "Also each pass's own noise: traced configurations again with the next seed; pass:DIR reads "
+               "DIR/seed2/<scene>.exr");
   app.add_option("--dump", dumpDir, "Write <scene>.<config index>.ppm: ours, Cycles and |difference| side by side");
   CLI11_PARSE(app, argc, argv);
 
@@ -268,6 +321,7 @@ int main(int argc, char** argv) {
     const ssrcl::EnvironmentMap givenEnvironment =
         environmentPath.empty() ? ssrcl::EnvironmentMap{} : ssrcl::loadEnvironmentMap(environmentPath);
     std::vector<std::vector<Score>> scores(configs.size(), std::vector<Score>(scenes.size()));
+    std::vector<double> answeredShare(scenes.size(), 0), peak(scenes.size(), 1);
     for (size_t s = 0; s < scenes.size(); ++s) {
       const ssrcl::test::CyclesReference ref = ssrcl::test::loadCyclesReference(scenes[s].path);
       const ssrcl::EnvironmentMap environment =
@@ -291,14 +345,18 @@ int main(int argc, char** argv) {
       ssrcl::Pipeline pipeline(device);
       pipeline.setGBuffer(ref.gbuffer);
       pipeline.setCamera(ref.camera);
+      std::vector<ssrcl::Image> passes(configs.size()), seed2(configs.size());
       for (size_t c = 0; c < configs.size(); ++c) {
         Score& score = scores[c][s];
-        if (configs[c].eevee) {
-          const std::string path =
-              (std::filesystem::path(scenes[s].path).parent_path() / (scenes[s].name + ".eevee.exr")).string();
+        if (configs[c].eevee || !configs[c].passDir.empty()) {
+          const std::filesystem::path dir = configs[c].eevee ? std::filesystem::path(scenes[s].path).parent_path()
+                                                             : std::filesystem::path(configs[c].passDir);
+          const std::string path = (dir / (scenes[s].name + (configs[c].eevee ? ".eevee.exr" : ".exr"))).string();
           if (!std::filesystem::exists(path)) continue;
-          score.error = ssrcl::test::referenceError(configs[c].glossyPassForm ? unscaled : ref,
-                                                    ssrcl::test::eeveeSpecular(path, configs[c].glossyPassForm), all);
+          passes[c] = configs[c].eevee ? ssrcl::test::eeveeSpecular(path, configs[c].glossyPassForm)
+                                       : ssrcl::test::readReflectionPass(path);
+          if (noise && !configs[c].eevee)
+            seed2[c] = ssrcl::test::readReflectionPass((dir / "seed2" / (scenes[s].name + ".exr")).string());
           score.present = true;
           continue;
         }
@@ -329,14 +387,32 @@ int main(int argc, char** argv) {
           for (const auto& [stage, t] : pipeline.stageTimes().ms) ms += t;
           score.ms = std::min(score.ms, ms);
         }
-        ssrcl::Image pass = pipeline.output("reflection");
-        if (configs[c].glossyPassForm)
-          ssrcl::applyGlossyPassForm(pass, withF0, ref.camera, configs[c].settings.constantRoughness);
-        const ssrcl::test::CyclesReference& against = configs[c].glossyPassForm ? unscaled : ref;
-        score.error = ssrcl::test::referenceError(against, pass, all);
+        passes[c] = pipeline.output("reflection");
+        if (noise) {
+          pipeline.settings().seed += 1;
+          pipeline.commit();
+          pipeline.execute();
+          seed2[c] = pipeline.output("reflection");
+        }
+        for (ssrcl::Image* p : {&passes[c], &seed2[c]})
+          if (configs[c].glossyPassForm && !p->empty())
+            ssrcl::applyGlossyPassForm(*p, withF0, ref.camera, configs[c].settings.constantRoughness);
         score.present = true;
-        if (!dumpDir.empty())
-          writeComparison(dumpDir + "/" + scenes[s].name + "." + std::to_string(c) + ".ppm", against, pass);
+      }
+      std::vector<const ssrcl::Image*> present;
+      for (size_t c = 0; c < configs.size(); ++c)
+        if (scores[c][s].present) present.push_back(&passes[c]);
+      const std::vector<size_t> answered = answeredByAll(all, present, ref);
+      peak[s] = ref.peak;
+      answeredShare[s] = double(answered.size()) / double(std::max<size_t>(all.size(), 1));
+      for (size_t c = 0; c < configs.size(); ++c) {
+        if (!scores[c][s].present) continue;
+        const ssrcl::test::CyclesReference& against = configs[c].glossyPassForm ? unscaled : ref;
+        scores[c][s].error = ssrcl::test::referenceError(against, passes[c], all);
+        scores[c][s].answered = ssrcl::test::referenceError(against, passes[c], answered);
+        if (!seed2[c].empty()) scores[c][s].noiseP99 = noiseP99(against, passes[c], seed2[c], answered);
+        if (!dumpDir.empty() && !configs[c].eevee)
+          writeComparison(dumpDir + "/" + scenes[s].name + "." + std::to_string(c) + ".ppm", against, passes[c]);
       }
       std::cerr << "scored " << scenes[s].name << " (" << all.size() << " reflector pixels; glossy-pass F0 from "
                 << (withF0.f0.empty() ? "base_color + metallic AOVs" : "the corpus rule, 1") << ")\n";
@@ -391,7 +467,13 @@ int main(int argc, char** argv) {
                                   {"bias", sc.error.bias},
                                   {"low_confidence_share", sc.error.lowConfidence},
                                   {"p99_relative", sc.error.p99},
-                                  {"firefly_share", sc.error.fireflies}});
+                                  {"firefly_share", sc.error.fireflies},
+                                  {"answered_share", answeredShare[s]},
+                                  {"answered_psnr_db", sc.answered.psnr},
+                                  {"answered_p99_relative", sc.answered.p99},
+                                  {"answered_fireflies", sc.answered.fireflies},
+                                  {"answered_bias", sc.answered.bias},
+                                  {"answered_noise_p99_relative", std::isnan(sc.noiseP99) ? nlohmann::json() : nlohmann::json(sc.noiseP99)}});
       }
       if (!n) continue;
       auto mean = [&](const std::string& split) {
@@ -406,7 +488,7 @@ int main(int argc, char** argv) {
                 << std::setw(9) << ms / n << std::setw(9) << mean("tune") << std::setw(9) << mean("holdout")
                 << std::setw(9) << mean("all") << std::setprecision(3) << std::setw(9) << low / n << std::setprecision(2)
                 << std::setw(9) << 100 * p99 / n << std::setw(9) << 1000 * flies / n << "\n";
-      if (!configs[c].eevee) {
+      if (!configs[c].eevee && configs[c].passDir.empty()) {
         ssrcl::cli::BenchResult point;
         point.input = "corpus mean (" + std::to_string(n) + " scenes)";
         point.config = configs[c].label;
@@ -415,6 +497,32 @@ int main(int argc, char** argv) {
         point.error.rmse = rmseRel / n;
         points.push_back(point);
       }
+    }
+    // Table 3: speckle where every pass answers.
+    std::cout << "\nspeckle over the pixels every pass answers (A >= 0.5 in each): p99 % of peak / fireflies per "
+                 "mille / mean signed error, % of peak"
+              << (noise ? " / own noise p99 (two seeds), % of peak" : "") << "\n"
+              << std::left << std::setw(labelWidth) << "answered" << std::right;
+    const auto cellWidth = [&](size_t s) { return std::max<size_t>(noise ? 28 : 21, scenes[s].name.size() + 1); };
+    for (size_t s = 0; s < scenes.size(); ++s)
+      std::cout << std::setw(cellWidth(s)) << std::to_string(int(std::lround(100 * answeredShare[s]))) + " %";
+    std::cout << "\n";
+    for (size_t c = 0; c < configs.size(); ++c) {
+      std::cout << std::left << std::setw(labelWidth) << configs[c].label << std::right;
+      for (size_t s = 0; s < scenes.size(); ++s) {
+        const Score& sc = scores[c][s];
+        std::ostringstream cell;
+        cell << std::fixed << std::setprecision(1);
+        if (!sc.present) {
+          cell << "-";
+        } else {
+          cell << 100 * sc.answered.p99 << " / " << 1000 * sc.answered.fireflies << " / " << std::showpos
+               << std::setprecision(2) << 100 * sc.answered.bias / peak[s] << std::noshowpos << std::setprecision(1);
+          if (!std::isnan(sc.noiseP99)) cell << " / " << 100 * sc.noiseP99;
+        }
+        std::cout << std::setw(cellWidth(s)) << cell.str();
+      }
+      std::cout << "\n";
     }
     if (!jsonPath.empty()) {
       std::ofstream(jsonPath) << json.dump(2) << "\n";

@@ -13,15 +13,16 @@ void addOutputFormOptions(CLI::App& cmd, OutputFormOptions& o) {
                  "metallic AOVs (or material options are given), else incident (said on stderr)")
       ->group(g)
       ->check(CLI::IsMember({"incident", "glossy-pass"}));
-  cmd.add_option("--f0-channels", o.f0Channels, "glossy-pass: specular colour at normal incidence, e.g. F0.R,F0.G,F0.B")
+  // Material passes: the glossy-pass form's Fresnel, and in either form the hits on glossy pixels.
+  cmd.add_option("--f0-channels", o.f0Channels, "Specular colour at normal incidence, e.g. F0.R,F0.G,F0.B")
       ->group(g);
   cmd.add_option("--base-color-channels", o.baseColorChannels,
-                 "glossy-pass: Principled base colour (default: the layer's base_color AOV, R,G,B)")
+                 "Principled base colour (default: the layer's base_color AOV, R,G,B)")
       ->group(g);
   cmd.add_option("--metallic-channel", o.metallicChannel,
-                 "glossy-pass: Principled metallic (default: the layer's metallic AOV, X)")
+                 "Principled metallic (default: the layer's metallic AOV, X)")
       ->group(g);
-  cmd.add_option("--material", o.materialFile, "glossy-pass: read those passes from this EXR instead")->group(g);
+  cmd.add_option("--material", o.materialFile, "Read those material passes from this EXR instead")->group(g);
 }
 
 namespace {
