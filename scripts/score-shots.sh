@@ -18,9 +18,11 @@ declare -A args=(
   [medium-t5]="--quality medium --temporal 5"
   [draft-t5]="--quality draft --temporal 5"
   [high-t5]="--quality high --temporal 5"
+  [medium-t2]="--quality medium --temporal 2"
+  [medium-frameseeds]="--quality medium --temporal 0"  # each frame its own seed, as --temporal's
 )
 configs=("$@")
-[ ${#configs[@]} -gt 0 ] || configs=(draft medium high draft-t5 medium-t5 high-t5)
+[ ${#configs[@]} -gt 0 ] || configs=(draft medium high draft-t5 medium-t2 medium-t5 high-t5 medium-frameseeds)
 names=${SSRCL_SHOTS:-}
 names=${names//,/ }
 [ -n "$names" ] || names=$(python3 -c 'import json,sys; print(" ".join(s["name"] for s in json.load(open(sys.argv[1]))["shots"]))' "$shots/shots.json")
@@ -29,6 +31,15 @@ for c in "${configs[@]}"; do
     env=$(python3 -c 'import json,sys; e=[x for x in json.load(open(sys.argv[1]))["shots"] if x["name"]==sys.argv[2]][0].get("environment"); print(e or "")' "$shots/shots.json" "$s")
     extra=()
     [ -z "$env" ] || extra=(--environment "$shots/$s/$env")
+    if [ "$c" = medium-frameseeds ]; then  # a batch per frame, --seed its index (no frames/s)
+      n=$(python3 -c 'import json,sys; print([x for x in json.load(open(sys.argv[1]))["shots"] if x["name"]==sys.argv[2]][0]["frames"])' "$shots/shots.json" "$s")
+      for f in $(seq 1 "$n"); do
+        # shellcheck disable=SC2086
+        "$build/ssrcl" batch "$shots/$s/$s.####.exr" --frames "$f" --seed $((f - 1)) -o "$passes/$c/$s/" \
+          --output-form glossy-pass ${args[$c]} "${extra[@]}" --overwrite -q
+      done
+      continue
+    fi
     # shellcheck disable=SC2086
     "$build/ssrcl" batch "$shots/$s/$s.####.exr" -o "$passes/$c/$s/" --output-form glossy-pass ${args[$c]} \
       "${extra[@]}" --overwrite -q --report "$passes/$c/$s.json"

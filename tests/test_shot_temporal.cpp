@@ -28,8 +28,8 @@ std::string stem(int frame) {
   return name;
 }
 
-std::string batch(const std::string& out, const std::string& options) {
-  return shellQuote(SSRCL_CLI) + " batch " + shellQuote(kShot + "living_truck.####.exr") + " -o " +
+std::string batch(const std::string& out, const std::string& options, const std::string& shot = kShot) {
+  return shellQuote(SSRCL_CLI) + " batch " + shellQuote(shot + "living_truck.####.exr") + " -o " +
          shellQuote(out + "/") + " --output-form glossy-pass -q " + options;
 }
 
@@ -53,10 +53,11 @@ ShotScore score(const std::string& passes) {
   return s;
 }
 
-// Every channel's values of every output of `dir`.
+// Every channel's values of every output `dir` has.
 std::map<std::string, std::map<std::string, std::vector<float>>> outputs(const std::string& dir) {
   std::map<std::string, std::map<std::string, std::vector<float>>> all;
   for (int f = 1; f <= kFrames; ++f) {
+    if (!fs::exists(dir + "/" + stem(f) + ".refl.exr")) continue;
     const ssrcl::test::ExrContents exr = ssrcl::test::readExr(dir + "/" + stem(f) + ".refl.exr");
     for (const auto& [name, channel] : exr.channels) all[stem(f)][name] = channel.values;
   }
@@ -95,6 +96,38 @@ TEST(ShotTemporal, ShardsAndResumeEqualTheWholeRun) {
   const auto other = runCommand(batch(whole, "--temporal 2"));
   EXPECT_EQ(other.exitCode, 2) << other.output;
   EXPECT_NE(other.output.find("temporal frames"), std::string::npos) << other.output;
+}
+
+// With the neighbours as views too, each frame read once serves as a view and as a frame to blend.
+TEST(ShotTemporal, WithNeighboursAShardEqualsTheWholeRun) {
+  ssrcl::test::TempDir dir("ssrcl-shot-neighbours");
+  const std::string whole = dir.file("whole"), sharded = dir.file("sharded");
+  const auto all = runCommand(batch(whole, "--temporal 1 --neighbours 1"));
+  ASSERT_EQ(all.exitCode, 0) << all.output;
+  const auto shard = runCommand(batch(sharded, "--temporal 1 --neighbours 1 --shard 1/2"));
+  ASSERT_EQ(shard.exitCode, 0) << shard.output;
+  const auto a = outputs(whole), b = outputs(sharded);
+  ASSERT_EQ(b.size(), 1u);
+  EXPECT_EQ(b.at(stem(2)), a.at(stem(2)));
+}
+
+// A shard reads the frames of its windows it does not own; one that cannot be read fails the
+// frames whose window holds it, naming it, and no other.
+TEST(ShotTemporal, AnUnreadableWindowFrameFailsOnlyTheFramesItBlendsInto) {
+  ssrcl::test::TempDir dir("ssrcl-shot-unreadable");
+  const std::string shot = dir.file("shot") + "/";
+  fs::create_directories(shot);
+  for (int f = 1; f <= kFrames; ++f)
+    for (const char* ext : {".exr", ".camera.json"}) fs::copy_file(kShot + stem(f) + ext, shot + stem(f) + ext);
+  fs::resize_file(shot + stem(3) + ".exr", 100);  // a truncated render
+  const auto middle = runCommand(batch(dir.file("out"), "--temporal 1 --shard 1/3", shot));
+  EXPECT_EQ(middle.exitCode, 2) << middle.output;
+  EXPECT_NE(middle.output.find("temporal neighbour " + shot + stem(3) + ".exr"), std::string::npos)
+      << middle.output;
+  EXPECT_FALSE(fs::exists(dir.file("out") + "/" + stem(2) + ".refl.exr"));
+  const auto first = runCommand(batch(dir.file("out"), "--temporal 1 --shard 0/3", shot));
+  EXPECT_EQ(first.exitCode, 0) << first.output;
+  EXPECT_TRUE(fs::exists(dir.file("out") + "/" + stem(1) + ".refl.exr"));
 }
 
 }  // namespace

@@ -68,7 +68,7 @@ int runBatch(BatchOptions& o) {
   if (o.neighbours != 0)
     neighbours = std::make_unique<NeighbourWindow>(o.in, all, o.neighbours, static_cast<int>(o.views.size()));
   std::unique_ptr<TemporalWindow> temporal;
-  if (o.temporal != 0) temporal = std::make_unique<TemporalWindow>(o.in, all, o.temporal, o.settings.resolve().seed);
+  if (o.temporal != 0) temporal = std::make_unique<TemporalWindow>(all, o.temporal, o.settings.resolve().seed);
   std::vector<FrameOutcome> outcomes(jobs.size());
   std::vector<const FrameJob*> toRun;
   for (size_t i = 0; i < jobs.size(); ++i) {

@@ -2,12 +2,10 @@
 
 #include <algorithm>
 
-#include "ssrcl/error.hpp"
-
 namespace ssrcl::cli {
 
-TemporalWindow::TemporalWindow(const GBufferInputOptions& input, std::vector<FrameJob> sequence, int k, uint32_t seed)
-    : input_(input), sequence_(std::move(sequence)), k_(k), seed_(seed) {
+TemporalWindow::TemporalWindow(std::vector<FrameJob> sequence, int k, uint32_t seed)
+    : sequence_(std::move(sequence)), k_(k), seed_(seed) {
   if (k < 0) throw Error(ErrorCode::InvalidArgument, "--temporal " + std::to_string(k) + ": must be 0 or more");
   for (size_t i = 0; i < sequence_.size(); ++i) byInput_[sequence_[i].input] = i;
 }
@@ -22,8 +20,20 @@ std::pair<size_t, size_t> TemporalWindow::span(size_t index) const {
   return {index > size_t(k_) ? index - size_t(k_) : 0, std::min(sequence_.size() - 1, index + size_t(k_))};
 }
 
-TemporalWindow::Traced TemporalWindow::trace(Pipeline& pipeline, NeighbourWindow* neighbours, size_t index,
-                                             const Frame& frame, double& deviceMs) const {
+std::vector<size_t> TemporalWindow::plan(const std::vector<std::string>& inputs) {
+  traced_.clear();
+  waiting_.clear();
+  for (const std::string& input : inputs) {
+    const auto [first, last] = span(indexOf(input));
+    for (size_t j = first; j <= last; ++j) ++waiting_[j];
+  }
+  std::vector<size_t> order;
+  for (const auto& [j, count] : waiting_) order.push_back(j);
+  return order;
+}
+
+double TemporalWindow::trace(Pipeline& pipeline, NeighbourWindow* neighbours, size_t index, const Frame& frame) {
+  if (!waiting_.count(index)) return 0;  // every blend that wanted it failed already
   const std::string& input = sequence_[index].input;
   if (neighbours) neighbours->moveTo(pipeline, input);
   const uint32_t seed = pipeline.settings().seed;
@@ -32,8 +42,9 @@ TemporalWindow::Traced TemporalWindow::trace(Pipeline& pipeline, NeighbourWindow
   pipeline.commit();
   pipeline.execute();
   pipeline.settings().seed = seed;
+  double deviceMs = 0;
   for (const auto& [stage, ms] : pipeline.stageTimes().ms) deviceMs += ms;
-  Traced t;
+  Traced& t = traced_[index];
   t.reflection = pipeline.output("reflection");  // copies: the pipeline reuses its outputs
   t.distance = pipeline.output("distance");
   t.view = pipeline.output("view");
@@ -41,32 +52,43 @@ TemporalWindow::Traced TemporalWindow::trace(Pipeline& pipeline, NeighbourWindow
   t.normal = frame.gbuffer.normal;
   t.roughness = frame.gbuffer.roughness;
   t.camera = frame.camera;
-  return t;
+  return deviceMs;
 }
 
-TemporalWindow::Pass TemporalWindow::blend(Pipeline& pipeline, NeighbourWindow* neighbours, const std::string& input,
-                                           const Frame& frame) {
+void TemporalWindow::fail(size_t index, const Error& error) {
+  if (waiting_.count(index)) traced_.insert_or_assign(index, Traced{{}, {}, {}, {}, {}, {}, {}, error});
+}
+
+bool TemporalWindow::ready(const std::string& input) const {
+  const auto [first, last] = span(indexOf(input));
+  for (size_t j = first; j <= last; ++j)
+    if (!traced_.count(j)) return false;
+  return true;
+}
+
+void TemporalWindow::releaseWindow(size_t index) {
+  const auto [first, last] = span(index);
+  for (size_t j = first; j <= last; ++j) {
+    const auto it = waiting_.find(j);
+    if (it == waiting_.end() || --it->second > 0) continue;
+    waiting_.erase(it);
+    traced_.erase(j);
+  }
+}
+
+void TemporalWindow::release(const std::string& input) { releaseWindow(indexOf(input)); }
+
+TemporalWindow::Pass TemporalWindow::blend(Pipeline& pipeline, const std::string& input) {
   const size_t centre = indexOf(input);
   const auto [first, last] = span(centre);
-  for (auto it = traced_.begin(); it != traced_.end();)  // frames before the window are not needed again
-    it = it->first < first ? traced_.erase(it) : std::next(it);
-  Pass pass;
-  for (size_t j = first; j <= last; ++j) {
-    if (traced_.count(j)) continue;
-    if (j == centre) {
-      traced_[j] = trace(pipeline, neighbours, j, frame, pass.deviceMs);
-      continue;
-    }
-    const FrameJob& job = sequence_[j];
-    try {
-      traced_[j] = trace(pipeline, neighbours, j, loadFrame(frameSource(input_, job)), pass.deviceMs);
-    } catch (const Error& e) {
-      throw Error(e.code(), "temporal neighbour " + job.input + ": " + e.what());
-    }
-  }
   std::vector<TemporalFrame> frames;
   for (size_t j = first; j <= last; ++j) {
     const Traced& t = traced_.at(j);
+    if (t.failure) {
+      const Error e = *t.failure;
+      releaseWindow(centre);
+      throw Error(e.code(), "temporal neighbour " + sequence_[j].input + ": " + e.what());
+    }
     frames.push_back(
         {&t.reflection, &t.distance, &t.depth, &t.normal, t.roughness.empty() ? nullptr : &t.roughness, t.camera});
   }
@@ -74,9 +96,14 @@ TemporalWindow::Pass TemporalWindow::blend(Pipeline& pipeline, NeighbourWindow* 
   settings.mirrorRoughness = pipeline.settings().mirrorRoughness;
   settings.constantRoughness = pipeline.settings().constantRoughness;
   const Traced& own = traced_.at(centre);
-  pass.reflection = temporalBlend(frames, centre - first, settings);
-  pass.distance = own.distance;
-  pass.view = own.view;
+  Pass pass;
+  try {
+    pass = {temporalBlend(frames, centre - first, settings), own.distance, own.view};
+  } catch (...) {
+    releaseWindow(centre);
+    throw;
+  }
+  releaseWindow(centre);
   return pass;
 }
 
