@@ -28,7 +28,8 @@
 // screen: they take the screen colour), materials (1, the default: those hits are shaded with
 // each pixel's F0 from the render's base_color / metallic AOVs where it has them, as `ssrcl trace`
 // does with them loaded; 0: without, specular colour alone),
-// hitroughness, spp, reuse, denoise, prefilter, tracer, step, seed,
+// hitroughness, spp, fullrays (fullRaysRoughness: smoother pixels get proportionally fewer rays),
+// reuse, denoise, prefilter, tracer, step, seed,
 // stride, iterations, form (incident, the default: our pass times E(F0 = 1) here; glossy-pass: the
 // pass `ssrcl trace --output-form glossy-pass` writes, compared with Cycles as it is, F0 from the
 // render's base_color / metallic AOVs where it has them, else 1 as the corpus's reflectors have).
@@ -125,6 +126,8 @@ Config parseConfig(const std::string& spec) {
       s.glossyHitRoughness = std::stof(value);
     } else if (key == "spp") {
       s.samplesPerPixel = std::stoi(value);
+    } else if (key == "fullrays") {
+      s.fullRaysRoughness = std::stof(value);
     } else if (key == "reuse") {
       s.reuseRadius = std::stoi(value);
     } else if (key == "denoise") {
