@@ -17,9 +17,23 @@ __kernel void denoise(FilterParams params, __global const int* tile_list, __glob
     out_distance[i] = in_distance[i];
     return;
   }
-  int radius = clamp((int)(nr.w * 6.0f + 0.5f), 1, 4);
+  // Wider for rougher lobes, narrower the more rays the pixel has: its noise falls as 1/sqrt(rays),
+  // and a wide kernel over a well-sampled pixel only blurs (12 x roughness at 4 rays). A pixel
+  // resolved from its neighbours' rays alone (-1, strided tracing) counts as one.
+  int radius = clamp((int)(nr.w * 24.0f * rsqrt((float)max(pixel_rays[i], 1)) + 0.5f), 1, 6);
   float sigma2 = 0.5f * (float)(radius * radius);
   float d = positions[i].w;
+  // Neighbours are compared with the plane through this pixel, not its depth: inverse depth is affine
+  // in screen space over a plane. The gradient per axis is the smaller one-sided difference, so an edge
+  // on one side does not tilt the plane.
+  float inv_d = 1.0f / d;
+  float gx0 = x > 0 ? inv_d - 1.0f / positions[i - 1].w : INFINITY;
+  float gx1 = x + 1 < size.x ? 1.0f / positions[i + 1].w - inv_d : INFINITY;
+  float gy0 = y > 0 ? inv_d - 1.0f / positions[i - size.x].w : INFINITY;
+  float gy1 = y + 1 < size.y ? 1.0f / positions[i + size.x].w - inv_d : INFINITY;
+  float2 g = (float2)(fabs(gx0) < fabs(gx1) ? gx0 : gx1, fabs(gy0) < fabs(gy1) ? gy0 : gy1);
+  if (!isfinite(g.x)) g.x = 0.0f;
+  if (!isfinite(g.y)) g.y = 0.0f;
   float4 sum = (float4)(0.0f);
   float weights = 0.0f, dist_sum = 0.0f, dist_weights = 0.0f;
   for (int dy = -radius; dy <= radius; ++dy) {
@@ -29,10 +43,10 @@ __kernel void denoise(FilterParams params, __global const int* tile_list, __glob
       int q = qy * size.x + qx;
       float4 nq = normals[q];
       if (pixel_rays[q] == 0 || nq.w <= mirror_roughness) continue;
-      // The Gaussian, same surface depth-wise, similar lobe width: one exp of their exponents' sum;
+      // The Gaussian, on the same plane, similar lobe width: one exp of their exponents' sum;
       // same orientation: cos^64 by six squarings (PoCL's exp and pow are library calls, which took
       // 86% of the filter's time: docs/BENCHMARKS.md "Resolve and filter").
-      float w = exp(-(float)(dx * dx + dy * dy) / (2.0f * sigma2) - fabs(positions[q].w - d) / (0.01f * d) -
+      float w = exp(-(float)(dx * dx + dy * dy) / (2.0f * sigma2) - fabs(positions[q].w * (inv_d + dx * g.x + dy * g.y) - 1.0f) / 0.01f -
                     fabs(nq.w - nr.w) * 10.0f);
       float cosine = fmax(dot(nr.xyz, nq.xyz), 0.0f);
       for (int k = 0; k < 6; ++k) cosine *= cosine;

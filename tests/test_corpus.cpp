@@ -87,13 +87,14 @@ TEST(Corpus, DefaultsMeetMeasuredAccuracy) {
 }
 
 // Speckle: rough ground reflecting small bright neon. The prefiltered lookup cuts the 99th
-// percentile of per-pixel error (measured, filter on: 0.267 -> 0.164 of the peak; off: 0.309 ->
-// 0.178) and raises PSNR (20.9 -> 25.6 dB; off: 19.9 -> 24.7).
+// percentile of per-pixel error and raises PSNR (measured: 0.169 -> 0.135 of the peak, 24.57 ->
+// 28.32 dB). The plane-aware filter's wider radius removes part of the speckle by itself (with the
+// narrower filter before it the prefilter took p99 from 0.267 to 0.164 and PSNR +4.7 dB).
 TEST(Corpus, PrefilterRemovesSpeckle) {
   const Scored& s = scored("night_street");
   const ReferenceError on = s.errors.at("default"), off = s.errors.at("no prefilter");
-  EXPECT_LT(on.p99, 0.65 * off.p99);
-  EXPECT_GT(on.psnr, off.psnr + 4.0);
+  EXPECT_LT(on.p99, 0.85 * off.p99);
+  EXPECT_GT(on.psnr, off.psnr + 3.0);
 }
 
 // ... without darkening the pass: the same rays read at full resolution are the unbiased pass

@@ -574,14 +574,16 @@ TEST_P(GlossySsr, HighPresetFilterCutsTheErrorWithoutBias) {
   std::cout << "r " << c.roughness << " high: " << describe(e) << "\n   unfiltered: " << describe(raw) << "\n";
   record("high", e);
   record("high_unfiltered", raw);
-  // Measured: bias A +0.0007 (r 0.3) and -0.0012 (r 0.6), channels within 0.0011; rms A 0.0120
-  // and 0.0142 (all rays, before: 0.0132 and 0.0160) against the unfiltered pass of all rays'
-  // 0.0140 and 0.0186 (x0.86, x0.76), mean |err| 0.0082 and 0.0086 against 0.0084 and 0.0107
-  // (x0.98, x0.80). A filter that passes its input through leaves the quarter of the taps'
-  // noise, above the unfiltered pass of all of them: it fails the rms gain.
+  // Measured: bias A -0.0013 (r 0.3) and -0.0018 (r 0.6), channels within 0.0017; rms A 0.0116
+  // and 0.0170 against the unfiltered pass of all rays' 0.0157 and 0.0198 (x0.74, x0.86), mean
+  // |err| 0.0079 and 0.0089 against 0.0094 and 0.0110 (x0.84, x0.81). (The filter that compared
+  // depths, not planes: rms 0.0127 and 0.0150; the plane test lets a slanted floor's rows in,
+  // which gains on both Cycles corpora but costs this r 0.6 floor 1.13x.) A filter that passes
+  // its input through leaves the quarter of the taps' noise, above the unfiltered pass of all of
+  // them: it fails the rms gain.
   EXPECT_LT(std::abs(e.biasA), 0.004);
   for (int ch = 0; ch < 3; ++ch) EXPECT_LT(std::abs(e.biasChannel[ch]), 0.004) << ch;
-  EXPECT_LT(e.rmsA, 0.0158);
+  EXPECT_LT(e.rmsA, 0.0187);
   EXPECT_LT(e.rmsA, 0.9 * raw.rmsA);
   EXPECT_LT(e.meanAbsA, raw.meanAbsA);
   EXPECT_LT(e.meanAbsRgb, raw.meanAbsRgb);
@@ -601,15 +603,17 @@ TEST_P(GlossySsr, DraftStrideTwoReconstructsTheUntracedPixels) {
             << "\n   reconstructed pixels: " << describe(borrowed) << "\n";
   record("draft", e);
   record("draft_reconstructed", borrowed);
-  // Measured: bias A -0.0022 (r 0.3) and -0.0051 (r 0.6: 64 iterations give up on some far hits),
-  // reconstructed pixels -0.0018 and -0.0054, channels within 0.0049; rms A 0.088 and 0.116, the
-  // reconstructed pixels' 1.22x and 1.30x the traced ones'. Bounds: biases 0.002 beyond the worst
-  // (as the fast path's margin), rms 10%. Untraced pixels left empty fail the bias at once.
-  EXPECT_LT(std::abs(e.biasA), 0.0075);
-  EXPECT_LT(std::abs(borrowed.biasA), 0.0075);
-  for (int ch = 0; ch < 3; ++ch) EXPECT_LT(std::abs(borrowed.biasChannel[ch]), 0.0075) << ch;
-  EXPECT_LT(e.rmsA, 0.128);
-  EXPECT_LT(borrowed.rmsA, 1.43 * own.rmsA);
+  // Measured: bias A -0.0026 (r 0.3) and -0.0001 (r 0.6), reconstructed pixels -0.0024 and
+  // -0.0002, channels within 0.0023; rms A 0.045 and 0.056, the reconstructed pixels' 0.97x and
+  // 1.09x the traced ones' (the filter's radius follows the rays a pixel has, a reconstructed
+  // pixel counting as one: before, with one radius for all, 0.088 and 0.116, 1.22x and 1.30x).
+  // Bounds: biases 0.002 beyond the worst (as the fast path's margin), rms 10%. Untraced pixels
+  // left empty fail the bias at once; a radius undefined for them, the ratio (1.85x).
+  EXPECT_LT(std::abs(e.biasA), 0.0046);
+  EXPECT_LT(std::abs(borrowed.biasA), 0.0046);
+  for (int ch = 0; ch < 3; ++ch) EXPECT_LT(std::abs(borrowed.biasChannel[ch]), 0.0046) << ch;
+  EXPECT_LT(e.rmsA, 0.062);
+  EXPECT_LT(borrowed.rmsA, 1.2 * own.rmsA);
 }
 
 // --roughness-mapping linear: alpha is the roughness pass itself. Given roughness^2 it must
@@ -668,13 +672,14 @@ TEST(GlossySsrCrease, RaysAreNotReusedAcrossTheCrease) {
   std::cout << "creased floor, medium: " << describe(all) << "\n   within " << reach
             << " px of the crease: " << describe(band) << "\n";
   record("crease_band", band);
-  // Measured (PoCL): in the band bias A +0.0081, rms A 0.0576 (over the whole floor +0.0068,
-  // 0.041: the tilted halves' own residue, not understood yet); reusing the other half's rays
-  // moves the band to bias -0.0040 and rms 0.0654. Bounds: rms 10% above the measured value, the
-  // bias within 0.006 of it (half the mutant's shift).
+  // Measured (PoCL): in the band bias A +0.0157, rms A 0.0470 (over the whole floor +0.0088,
+  // 0.052: the tilted halves' own residue, not understood yet; the filter's kernel, cut at the
+  // crease, leans on each half's interior: +0.0076 against its narrower radius before);
+  // reusing the other half's rays moves the band to bias +0.0004. Bounds: rms 10% above the
+  // measured value, the bias within 0.006 of it (under half the mutant's shift).
   ASSERT_GT(band.pixels, 100u);
-  EXPECT_LT(std::abs(band.biasA - 0.0081), 0.006);
-  EXPECT_LT(band.rmsA, 0.0634);
+  EXPECT_LT(std::abs(band.biasA - 0.0157), 0.006);
+  EXPECT_LT(band.rmsA, 0.0517);
 }
 
 // Same inputs and seed: bit-identical output; another seed: another output.
