@@ -28,6 +28,8 @@ inline bool isPerspective(const Camera& camera) { return camera.projection[2][3]
 
 // Planar depth from distances along each pixel's ray; values that mean no surface are kept.
 Image planarFromRadial(const Image& radial, const Camera& camera);
+// planarFromRadial at pixel (x, y) of distance `radial`; `inverse` is the inverse projection.
+float planarFromRadialAt(float radial, const glm::dmat4& inverse, const Camera& camera, int x, int y);
 // Planar depth from world positions; (0,0,0) and non-finite positions become 1e10 (no surface).
 Image planarFromPositions(const Image& positions, const Camera& camera);
 

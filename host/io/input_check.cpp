@@ -73,6 +73,26 @@ std::vector<glm::dvec3> geometricNormals(const Image& planar, const Camera& came
   return normals;
 }
 
+// The depth pass read as radial, in planar depth where geometricNormals reads it (the grid and
+// each grid pixel's four neighbours): converting the whole frame took longer than the check.
+Image radialOnGrid(const Image& radial, const Camera& camera, int stride) {
+  const glm::dmat4 inverse = glm::inverse(camera.projection);
+  Image planar = radial;
+  const auto convert = [&](int x, int y) {
+    if (x >= 0 && y >= 0 && x < radial.width && y < radial.height)
+      planar.at(x, y, 0) = detail::planarFromRadialAt(radial.at(x, y, 0), inverse, camera, x, y);
+  };
+  for (int y = stride / 2; y < radial.height; y += stride)
+    for (int x = stride / 2; x < radial.width; x += stride) {
+      convert(x, y);
+      convert(x - 1, y);
+      convert(x + 1, y);
+      convert(x, y - 1);
+      convert(x, y + 1);
+    }
+  return planar;
+}
+
 std::string describe(const Hypothesis& h) { return h.depth + " depth, " + h.normals + " normals"; }
 
 std::string decimal(double value) {
@@ -141,13 +161,16 @@ InputCheckReport checkInputConventions(const GBuffer& g, const GBufferSource& so
     }
   }
 
+  const long long pixels = static_cast<long long>(geometry.width) * geometry.height;
+  const int stride = std::max(1, int(std::ceil(std::sqrt(double(pixels) / kMaxSamples))));
+
   // Depth readings: the pass as planar and as radial (positions have one reading).
   std::vector<std::pair<std::string, Image>> depths;
   if (fromPositions) {
     depths.emplace_back("position", detail::planarFromPositions(g.position, camera));
   } else {
     depths.emplace_back("planar", g.depth);
-    depths.emplace_back("radial", detail::planarFromRadial(g.depth, camera));
+    depths.emplace_back("radial", radialOnGrid(g.depth, camera, stride));
   }
   const std::string declaredDepth = fromPositions ? "position" : depthKindName(source.depthKind);
 
@@ -162,8 +185,6 @@ InputCheckReport checkInputConventions(const GBuffer& g, const GBufferSource& so
                             &planar, source.normalSpace, axis});
   }
 
-  const long long pixels = static_cast<long long>(geometry.width) * geometry.height;
-  const int stride = std::max(1, int(std::ceil(std::sqrt(double(pixels) / kMaxSamples))));
   const glm::dmat3 worldToEye(camera.view);
   std::vector<std::vector<glm::dvec3>> geometric;
   for (const auto& depth : depths) geometric.push_back(geometricNormals(depth.second, camera, stride));
