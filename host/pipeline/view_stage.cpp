@@ -41,11 +41,12 @@ void ViewStage::validate(const ViewSource& view, int index, const TraceSettings&
 }
 
 void ViewStage::configure(Device::Impl& device, const TraceSettings& s, size_t viewCount) {
+  units_.resize(viewCount);
+  if (viewCount == 0) return;  // nothing to build: clang preprocesses a program even when PoCL has it cached
   program_ = device.program(
       {"ssrcl_shared.h", "common.cl", "sequence.cl", "ggx.cl", "color_lookup.cl", "surface_plane.cl", "trace.cl",
        "view_trace.cl"},
       {tracerDefine(s.tracer), roughnessMappingDefine(s.roughnessMapping), "SSRCL_COUNT_WORK=0", "SSRCL_VIEWS=1"});
-  units_.resize(viewCount);
   for (auto& unit : units_) {
     if (!unit) unit = std::make_unique<Unit>();
     unit->setup.configure(device);
