@@ -230,7 +230,7 @@ TEST(PipelineApi, NewImagesOfTheCommittedShapeNeedNoCommit) {
 // The constant roughness is one optional setting: set, no roughness image is read and every pixel
 // traces as if the image held that value everywhere; out of [0, 1] it is refused by name.
 TEST(PipelineApi, ConstantRoughnessReplacesTheRoughnessImage) {
-  Frame f = render(64, 48);  // its roughness image is 0.3 everywhere
+  Frame f = render(96, 64);  // its roughness image is 0.3 everywhere
   const Output truth = reference(f, glossy());
   f.g.roughness = Image();
   TraceSettings constant = glossy();
