@@ -52,6 +52,7 @@ MUTANTS=(
   "smith_g_uncorrelated|0|resolve.cl|(lobe.c * lz + s)|(0.5f * (1.0f + lobe.c) * (lz + s))|$GLOSSY_FAST $GLOSSY"
   "smith_lambda_alpha_linear|0|ggx.cl|sqrt(1.0f + alpha * alpha * tan2)|sqrt(1.0f + alpha * tan2)|$GLOSSY_FAST $GLOSSY"
   "hzb_max_reduction|1|hzb.cl|float m = fmin(fmin(s[c.y0 * w + c.x0], s[c.y0 * w + c.x1]), fmin(|float m = fmax(fmax(s[c.y0 * w + c.x0], s[c.y0 * w + c.x1]), fmax(|$HZB $DIFFERENTIAL"
+  "back_min_reduction|1|back_pyramid.cl|float m = fmax(fmax(s[c.y0 * w + c.x0], s[c.y0 * w + c.x1]), fmax(|float m = fmin(fmin(s[c.y0 * w + c.x0], s[c.y0 * w + c.x1]), fmin(|$DIFFERENTIAL"
   "edge_fade_off|1|common.cl|if (!(edge_fade > 0.0f)) return 1.0f;|return 1.0f;|$EDGE"
   "reuse_weight_uniform|0|resolve.cl|return select((float4)(0.0f), w, lz > 0.0f);|return select((float4)(0.0f), (float4)(1.0f), lz > 0.0f);|$GLOSSY_FAST $GLOSSY"
   "sequence_rotation_off|0|sequence.cl|float2 u = r2 + shift;|float2 u = r2;|$GLOSSY_FAST $GLOSSY"
