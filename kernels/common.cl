@@ -65,6 +65,13 @@ inline bool reduce_cell(__global const HzbLevel* levels, int dst_level, int x, i
   return true;
 }
 
+// The four source texels under a reduction cell of `pyramid` (one buffer, levels at their offsets).
+inline float4 cell_texels(__global const float* pyramid, const ReduceCell* c) {
+  __global const float* s = pyramid + c->src.offset;
+  int w = c->src.width;
+  return (float4)(s[c->y0 * w + c->x0], s[c->y0 * w + c->x1], s[c->y1 * w + c->x0], s[c->y1 * w + c->x1]);
+}
+
 // The viewing line through NDC (x, y) as a point on it and a step along it (eye -> scene) that
 // grows planar depth by exactly 1: the point at depth D is origin + (D + origin.z) * step.
 // Built from two homogeneous points, inv_proj * (x, y, 0, 1) and the centre of projection

@@ -6,8 +6,6 @@ __kernel void hzb_reduce(__global float* hzb, __global const HzbLevel* levels, i
   int x = get_global_id(0), y = get_global_id(1);
   ReduceCell c;
   if (!reduce_cell(levels, dst_level, x, y, &c)) return;
-  __global const float* s = hzb + c.src.offset;
-  int w = c.src.width;
-  float m = fmin(fmin(s[c.y0 * w + c.x0], s[c.y0 * w + c.x1]), fmin(s[c.y1 * w + c.x0], s[c.y1 * w + c.x1]));
-  hzb[c.dst.offset + y * c.dst.width + x] = m;
+  float4 t = cell_texels(hzb, &c);
+  hzb[c.dst.offset + y * c.dst.width + x] = fmin(fmin(t.x, t.y), fmin(t.z, t.w));
 }

@@ -9,6 +9,10 @@
 #ifndef SSRCL_VIEWS
 #define SSRCL_VIEWS 0  // 1: auxiliary views follow (kernels/view_trace.cl); ray states are written
 #endif
+// The Hi-Z trace skips cells the ray crosses wholly behind every hit a pixel there allows (the
+// back pyramid, back_pyramid.cl). Not with views: a ray's passage behind surfaces is recorded there
+// pixel by pixel (SSRCL_RAY_BEHIND).
+#define SSRCL_BACK_SKIP (!SSRCL_VIEWS)
 #ifndef SSRCL_MATERIAL_HITS
 #define SSRCL_MATERIAL_HITS 0  // 1: hits on glossy pixels are shaded with their F0 (f0, albedo)
 #endif
@@ -78,6 +82,7 @@ typedef struct {
   // hit (a ray that starts hidden, as from a surface a view sees from behind, is not held to it
   // until it comes into view); its hit was found within a surface's thickness.
   int seen, behind, thick;
+  __global const float* back;  // the back pyramid (SSRCL_BACK_SKIP), levels as the HZB's
 } TraceScene;
 
 // The ray's signed distance to a pixel's plane (n, dot(p, n)) / thickness, in thicknesses, times
@@ -122,8 +127,17 @@ inline float hit_pixel(TraceScene* sc, const ScreenRay* ray, float3 dir, int2 ce
   return -1.0f;
 }
 
+// Whether the ray over [t0, t1] (clipped to its end) is behind every hit the cell at `mip` allows:
+// its nearest depth there (depth is monotonic along it) beyond the back pyramid's texel.
+inline bool behind_back(TraceScene* sc, const ScreenRay* ray, float t0, float t1, int mip, int2 cell) {
+  if (!SSRCL_BACK_SKIP) return false;
+  ++sc->fetches;
+  return fmin(ray_depth(ray, fmin(t0, 1.0f)), ray_depth(ray, fmin(t1, 1.0f))) > hzb_fetch(sc->back, sc->levels, mip, cell);
+}
+
 // Hierarchical traversal (FidelityFX SSSR style): climb while the ray stays in front of a cell's
-// nearest depth, descend where it may hit, and decide at full resolution with hit_pixel.
+// nearest depth, descend where it may hit, skip what it passes wholly behind (behind_back), and
+// decide at full resolution with hit_pixel.
 // Returns the hit's t, or a negative value on a miss.
 inline float trace_hiz(TraceScene* sc, const ScreenRay* ray, float3 dir, int2* hit_cell) {
   float major = fmax(fabs(ray->ds.x), fabs(ray->ds.y));
@@ -141,13 +155,18 @@ inline float trace_hiz(TraceScene* sc, const ScreenRay* ray, float3 dir, int2* h
         *hit_cell = cell;
         return t_hit;
       }
+      // Climb where it leaves in front, or behind all the pixel allows (likely its neighbours' too);
+      // else it passed behind within reach: stay fine.
+      if (in_front || behind_back(sc, ray, t_exit, t_exit, 0, cell)) mip = min(1, sc->level_count - 1);
       t = t_exit;
-      if (in_front) mip = min(1, sc->level_count - 1);  // else it passed behind: stay fine
       continue;
     }
     float d_min = hzb_fetch(sc->hzb, sc->levels, mip, cell);
     ++sc->fetches;
-    if (ray_depth(ray, t) < d_min) {
+    if (ray_depth(ray, t) >= d_min && behind_back(sc, ray, t, t_exit, mip, cell)) {
+      t = t_exit;  // behind every hit this cell allows
+      mip = min(mip + 1, sc->level_count - 1);
+    } else if (ray_depth(ray, t) < d_min) {
       // In front of everything in this cell: does the ray reach the cell's nearest depth inside it?
       float t_cross = (deeper && d_min < SSRCL_NO_SURFACE) ? ray_t_at_depth(ray, d_min) : INFINITY;
       if (t_cross <= t_exit) {
@@ -263,6 +282,7 @@ inline void trace_hiz_lanes(TraceScene* sc, const ScreenRay* rays, const float3*
   int8 iterations = vload8(0, lane_iterations), fetches = 0;
   int8 seen = vload8(0, lane_seen) != 0, behind = 0, thick = 0;
   const int top = sc->level_count - 1;
+  const bool back_skip = SSRCL_BACK_SKIP;
   __global const float4* levels = (__global const float4*)sc->levels;  // HzbLevel: 4 ints, read as bits
 
   float8 nudge = 0.01f / fmax(fabs(r.dsx), fabs(r.dsy));
@@ -287,14 +307,27 @@ inline void trace_hiz_lanes(TraceScene* sc, const ScreenRay* rays, const float3*
       hit_x = select(hit_x, cx, hit);
       hit_y = select(hit_y, cy, hit);
     }
-    float8 d_min = 0.0f;
-    if (!all(fine | ~active)) {
+    // The HZB's texel where a lane is coarse; the back pyramid's where it may skip or climb
+    // (behind_back's reads).
+    int8 coarse = active & ~fine;
+    float8 depth_t = -(r.q0z + t * r.dqz) / (r.q0w + t * r.dqw);
+    float8 t_end = fmin(t_exit, 1.0f);
+    float8 depth_exit = -(r.q0z + t_end * r.dqz) / (r.q0w + t_end * r.dqw);
+    float8 d_min = 0.0f, d_back = INFINITY;
+    int8 back_reads = 0;
+    const int8 climbing = back_skip ? fine & ~hit & ~in_front : 0;  // a fine lane's climb reads it
+    if (any(coarse | climbing)) {
       float8 l_width, l_height, unused;
       int8 l_offset = as_int8(gather8_xyzw(levels, mip, &l_width, &l_height, &unused));
       int8 width = as_int8(l_width);
-      d_min = gather8(sc->hzb, l_offset + clamp(cy, 0, as_int8(l_height) - 1) * width + clamp(cx, 0, width - 1));
+      int8 texel = l_offset + clamp(cy, 0, as_int8(l_height) - 1) * width + clamp(cx, 0, width - 1);
+      if (any(coarse)) d_min = gather8(sc->hzb, texel);
+      if (back_skip) {
+        d_back = gather8(sc->back, texel);
+        back_reads = climbing | (coarse & (depth_t >= d_min));
+      }
     }
-    int8 front = -(r.q0z + t * r.dqz) / (r.q0w + t * r.dqw) < d_min;
+    int8 front = depth_t < d_min;
     float8 denom = r.dqz + d_min * r.dqw;
     float8 t_cross = -(r.q0z + d_min * r.q0w) / denom;
     t_cross = select((float8)(INFINITY), t_cross, (denom != 0.0f) & isfinite(t_cross) & deeper &
@@ -303,9 +336,13 @@ inline void trace_hiz_lanes(TraceScene* sc, const ScreenRay* rays, const float3*
 
     float8 t_next = select(select(t, t_exit, front), fmax(t, t_cross), cross);
     int8 mip_next = select(mip - 1, min(mip + 1, top), front & ~cross);
+    int8 skip = coarse & (depth_t >= d_min) & (fmin(depth_t, depth_exit) > d_back);
+    t_next = select(t_next, t_exit, skip);
+    mip_next = select(mip_next, min(mip + 1, top), skip);
     t_next = select(t_next, t_exit, fine);
-    mip_next = select(mip_next, select((int8)(0), (int8)(min(1, top)), in_front), fine);
+    mip_next = select(mip_next, select((int8)(0), (int8)(min(1, top)), in_front | (depth_exit > d_back)), fine);
     fetches -= active;
+    fetches -= back_reads;
     active &= ~hit;
     t = select(t, t_next, active);
     mip = select(mip, mip_next, active);
@@ -512,7 +549,8 @@ typedef struct {
 //   ray_hit      hit: (view-space hit point, confidence >= 0); miss: (direction, -1)
 //   ray_radiance (rgb at the hit, pdf of the direction); pdf 0 marks a ray that is a delta
 //                (mirror) or was not traced, which neighbours must not reuse.
-__kernel void trace_rays(TraceParams params, __global const float* hzb, __global const HzbLevel* levels,
+__kernel void trace_rays(TraceParams params, __global const float* hzb, __global const float* back,
+                         __global const HzbLevel* levels,
                          __global const float4* positions, __global const float4* normals,
                          __global const int* ray_list, __global const int* pixel_rays,
                          __global const float4* planes, __global int* work_counters,
@@ -540,7 +578,7 @@ __kernel void trace_rays(TraceParams params, __global const float* hzb, __global
     int2 lane_cell[SSRCL_TRACE_LANES];
     for (int k = 0; k < SSRCL_TRACE_LANES; ++k) {
       const ScreenRay none = {(float2)(0.0f), (float2)(0.0f), (float4)(0.0f), (float4)(0.0f)};
-      const TraceScene sc = {size, hzb, levels, level_count, planes, normals, params.max_iterations, 0, 0};
+      const TraceScene sc = {size, hzb, levels, level_count, planes, normals, params.max_iterations, 0, 0, 0, 0, 0, back};
       scene[k] = sc;  // every lane's: trace_hiz_lanes reads the frame from scene[0]
       lane[k].traced = lane_live[k] = 0;
       lane_ray[k] = none;  // lanes without a ray are traced too, their results unused

@@ -9,6 +9,7 @@
 #include <functional>
 #include <set>
 
+#include "pipeline/back_pyramid_stage.hpp"
 #include "pipeline/color_pyramid_stage.hpp"
 #include "pipeline/environment_stage.hpp"
 #include "pipeline/filter_stage.hpp"
@@ -82,11 +83,10 @@ TEST(FrameResources, ARolePlannedTwiceOrByNoneIsRefused) {
 // Every role a stage reads is written by a stage of the same frame (the main frame's or, for
 // the views' trace in a view, the view's own stages).
 TEST(FrameResources, EveryRoleReadIsWrittenBySomeStage) {
-  const std::vector<const StageAccess*> main = {&SetupStage::access,       &ThicknessStage::access,
-                                                &HzbStage::access,         &ColorPyramidStage::access,
-                                                &TraceStage::access,       &ResolveStage::access,
-                                                &FilterStage::access,      &EnvironmentStage::access,
-                                                &ViewStage::access};
+  const std::vector<const StageAccess*> main = {
+      &SetupStage::access,        &ThicknessStage::access, &HzbStage::access,     &BackPyramidStage::access,
+      &ColorPyramidStage::access, &TraceStage::access,     &ResolveStage::access, &FilterStage::access,
+      &EnvironmentStage::access,  &ViewStage::access};
   const std::vector<const StageAccess*> view = {&SetupStage::access, &ThicknessStage::access, &HzbStage::access,
                                                 &ColorPyramidStage::access, &ViewStage::viewAccess};
   for (const auto* frame : {&main, &view}) {

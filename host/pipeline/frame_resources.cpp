@@ -15,7 +15,7 @@ bool declares(const std::vector<Role>& roles, Role role) {
 
 const char* roleName(Role role) {
   static const char* const names[] = {"positions",     "normals",          "planes",        "pixel rays",
-                                      "ray list",      "tile list",        "depth pyramid", "pyramid levels",
+                                      "ray list",      "tile list",        "depth pyramid", "pyramid levels", "back pyramid",
                                       "colour pyramid", "ray hits",        "ray radiance",  "ray states",
                                       "resolved rgba", "resolved distance", "reflection",   "distance",
                                       "view share"};

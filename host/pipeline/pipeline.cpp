@@ -6,6 +6,7 @@
 #include "environment_stage.hpp"
 #include "filter_stage.hpp"
 #include "frame_resources.hpp"
+#include "back_pyramid_stage.hpp"
 #include "hzb_stage.hpp"
 #include "image_views.hpp"
 #include "io/conventions.hpp"
@@ -55,6 +56,7 @@ struct Pipeline::Impl {
   SetupStage setup;
   ThicknessStage thickness;
   HzbStage hzb;
+  BackPyramidStage backPyramid;
   ColorPyramidStage colors;
   TraceStage trace;
   ResolveStage resolve;
@@ -115,6 +117,7 @@ void Pipeline::Impl::plan() {
     setup.configure(d);
     thickness.configure(d, settings, back);
     hzb.configure(d);
+    backPyramid.configure(d);
     colors.configure(d, settings);
     trace.configure(d, settings, base, materials, viewCount > 0);
     resolve.configure(d, settings, viewCount);
@@ -138,6 +141,7 @@ void Pipeline::Impl::plan() {
   setup.plan(resources, buffers, frame, colorChannels, !settings.constantRoughness);
   thickness.plan(buffers, frame);
   hzb.plan(resources, buffers, frame);
+  backPyramid.plan(resources, buffers, frame);
   colors.plan(resources, buffers, frame);
   trace.plan(resources, buffers, frame);
   resolve.plan(buffers, frame);
@@ -161,6 +165,7 @@ void Pipeline::Impl::plan() {
   setup.bind(resources);
   thickness.bind(resources);
   hzb.bind(d.queue, resources);
+  backPyramid.bind(resources);
   colors.bind(resources);
   trace.bind(resources);
   // With the filter on, the resolve writes to an intermediate the filter reads.
@@ -207,6 +212,8 @@ void Pipeline::Impl::run() {
   stage = "thickness";
   thickness.enqueue(q, constants, s, hasBackDepth ? inputs.pixels("back_depth") : nullptr,
                     !detail::isPerspective(camera), events);
+  stage = "hzb";
+  backPyramid.enqueue(q, constants, events);
   stage = "views";
   viewStage.prepare(q, views, s, events);
   if (!views.empty()) viewStage.limitRadiance(inputs.pixels("color"), frame.pixels(), colorChannels);

@@ -47,7 +47,7 @@ const std::vector<cl_float2>& albedoTable() {
 }  // namespace
 
 const StageAccess TraceStage::access{"trace",
-                                     {Role::DepthPyramid, Role::PyramidLevels, Role::Positions, Role::Normals,
+                                     {Role::DepthPyramid, Role::BackPyramid, Role::PyramidLevels, Role::Positions, Role::Normals,
                                       Role::RayList, Role::PixelRays, Role::Planes, Role::ColorPyramid},
                                      {Role::RayHits, Role::RayRadiance, Role::RayStates}};
 
@@ -86,9 +86,9 @@ void TraceStage::bind(const FrameResources& resources) {
   auto in = [&](Role role) { return resources.read(access, role); };
   auto out = [&](Role role) { return resources.write(access, role); };
   bindArgs(kernel_, 1,
-           "hzb, levels, positions, normals, ray_list, pixel_rays, planes, work_counters, color_pyramid, base, "
+           "hzb, back, levels, positions, normals, ray_list, pixel_rays, planes, work_counters, color_pyramid, base, "
            "specular, f0, albedo, ray_hit, ray_radiance, ray_state",
-           in(Role::DepthPyramid), in(Role::PyramidLevels), in(Role::Positions), in(Role::Normals), in(Role::RayList),
+           in(Role::DepthPyramid), in(Role::BackPyramid), in(Role::PyramidLevels), in(Role::Positions), in(Role::Normals), in(Role::RayList),
            in(Role::PixelRays), in(Role::Planes), workCounters_, in(Role::ColorPyramid), baseIn_, specularIn_, f0In_,
            albedoTable_, out(Role::RayHits), out(Role::RayRadiance), out(Role::RayStates));
 }

@@ -1,0 +1,34 @@
+#include "back_pyramid_stage.hpp"
+
+#include "hzb_stage.hpp"
+
+namespace ssrcl::detail {
+
+const StageAccess BackPyramidStage::access{"back pyramid", {Role::Planes, Role::PyramidLevels}, {Role::BackPyramid}};
+
+void BackPyramidStage::configure(Device::Impl& device) {
+  const cl::Program& program = device.program({"ssrcl_shared.h", "common.cl", "back_pyramid.cl"});
+  level0_ = cl::Kernel(program, "back_level0");
+  reduce_ = cl::Kernel(program, "back_reduce");
+}
+
+void BackPyramidStage::plan(FrameResources& resources, DeviceBuffers& buffers, const FrameShape& frame) {
+  frame_ = frame;
+  resources.plan(access, buffers, Role::BackPyramid, frame.pyramidTexels() * sizeof(float));
+}
+
+void BackPyramidStage::bind(const FrameResources& resources) {
+  const cl::Buffer& back = resources.write(access, Role::BackPyramid);
+  bindArgs(level0_, 1, "planes, back", resources.read(access, Role::Planes), back);
+  bindArgs(reduce_, 0, "back, levels", back, resources.read(access, Role::PyramidLevels));
+}
+
+void BackPyramidStage::enqueue(cl::CommandQueue& q, const FrameConstants& frame, StageEvents& events) {
+  level0_.setArg(0, frame);
+  q.enqueueNDRangeKernel(level0_, cl::NullRange,
+                         cl::NDRange(roundUp(frame_.width, SSRCL_TILE), roundUp(frame_.height, SSRCL_TILE)),
+                         cl::NDRange(SSRCL_TILE, SSRCL_TILE), nullptr, newEvent(events, "hzb"));
+  reducePyramid(q, reduce_, frame_, events, "hzb");
+}
+
+}  // namespace ssrcl::detail

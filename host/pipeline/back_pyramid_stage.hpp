@@ -1,0 +1,23 @@
+#pragma once
+// The back pyramid (kernels/back_pyramid.cl): per texel the farthest depth at which a ray over its
+// pixels can hit a surface, from the final surface planes (after the thickness stage), reduced to
+// the HZB's levels with max. The Hi-Z trace skips what a ray passes wholly behind.
+#include "frame_resources.hpp"
+
+namespace ssrcl::detail {
+
+class BackPyramidStage {
+ public:
+  static const StageAccess access;
+
+  void configure(Device::Impl& device);
+  void plan(FrameResources& resources, DeviceBuffers& buffers, const FrameShape& frame);
+  void bind(const FrameResources& resources);
+  void enqueue(cl::CommandQueue& q, const FrameConstants& frame, StageEvents& events);
+
+ private:
+  FrameShape frame_;
+  cl::Kernel level0_, reduce_;
+};
+
+}  // namespace ssrcl::detail
