@@ -276,7 +276,7 @@ __kernel void resolve_accumulate(ResolveParams params, __global const int* tile_
         // share cache lines), picked by a phase that steps by one to the next pixel in x and by
         // two in y, so neighbouring pixels take different shares of q and one pixel's neighbours
         // cover the shares evenly (a rank-1 lattice).
-        const int8 parts = own ? (int8)(1) : select((int8)(1), min(SSRCL_RESOLVE_RAY_STRIDE, count), valid);
+        const int8 parts = own ? (int8)(1) : select((int8)(1), min(count, SSRCL_RESOLVE_RAY_STRIDE), valid);
         const float8 inv_parts = 1.0f / convert_float8(parts);
         const int8 phase = x + 2 * y + 3 * qx + qy, part = phase - parts * quotient(phase, inv_parts);
         const int8 start = select((int8)(0), quotient(part * count, inv_parts), valid),
