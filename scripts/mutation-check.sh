@@ -54,7 +54,7 @@ MUTANTS=(
   "hzb_max_reduction|1|hzb.cl|= fmin(fmin(t.x, t.y), fmin(t.z, t.w));|= fmax(fmax(t.x, t.y), fmax(t.z, t.w));|$HZB $DIFFERENTIAL"
   "back_min_reduction|1|back_pyramid.cl|= fmax(fmax(t.x, t.y), fmax(t.z, t.w));|= fmin(fmin(t.x, t.y), fmin(t.z, t.w));|$DIFFERENTIAL"
   "edge_fade_off|1|common.cl|if (!(edge_fade > 0.0f)) return 1.0f;|return 1.0f;|$EDGE"
-  "reuse_weight_uniform|0|resolve.cl|return select((float4)(0.0f), w, lz > 0.0f);|return select((float4)(0.0f), (float4)(1.0f), lz > 0.0f);|$GLOSSY_FAST $GLOSSY"
+  "reuse_weight_uniform|0|resolve.cl|return select((float8)(0.0f), w, lz > 0.0f);|return select((float8)(0.0f), (float8)(1.0f), lz > 0.0f);|$GLOSSY_FAST $GLOSSY"
   "sequence_rotation_off|0|sequence.cl|float2 u = r2 + shift;|float2 u = r2;|$GLOSSY_FAST $GLOSSY"
   "mirror_direction_flipped|0|trace.cl|if (mirror) return 2.0f * dot(o, n) * n - o;|if (mirror) return o - 2.0f * dot(o, n) * n;|$MIRROR"
   "vndf_radius_linear|0|ggx.cl|float r = sqrt(u.x);|float r = u.x;|$SAMPLER $GLOSSY_FAST"
@@ -62,7 +62,7 @@ MUTANTS=(
   "filter_off|0|filter.cl|out_rgba[i] = filtered.w > 0.0f ? filtered : (float4)(0.0f);|out_rgba[i] = in_rgba[i];|$HIGH"
   "strided_pixels_unresolved|0|setup.cl|: strided_out              ? -1|: strided_out              ? 0|$DRAFT"
   "constant_thickness_ignored|0|setup.cl|float thickness_rel = params.adaptive_thickness ? 1.0f : params.thickness_rel;|float thickness_rel = params.adaptive_thickness ? 1.0f : 0.002f;|$THICKNESS"
-  "neighbour_normal_check_off|0|resolve.cl|&& dot(n_p, n_q) >= 0.9f|/* mutant */|$CREASE"
+  "neighbour_normal_check_off|0|resolve.cl|&& dot_lanes(f.nx, f.ny, f.nz, n_q.x, n_q.y, n_q.z) >= 0.9f|/* mutant */|$CREASE"
 )
 
 echo "== building the test executables against mutable kernels in $BUILD"

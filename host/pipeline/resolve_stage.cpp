@@ -50,8 +50,9 @@ ResolveParams ResolveStage::params(const FrameConstants& frame, const TraceSetti
 
 void ResolveStage::accumulate(cl::CommandQueue& q, const ResolveParams& params, int tiles, StageEvents& events) {
   accumulate_.setArg(0, params);
-  q.enqueueNDRangeKernel(accumulate_, cl::NullRange, listedTiles(tiles), cl::NDRange(SSRCL_TILE, SSRCL_TILE), nullptr,
-                         newEvent(events, "resolve"));
+  // One work-item a tile row (kernels/resolve.cl: its pixels in float8 lanes).
+  q.enqueueNDRangeKernel(accumulate_, cl::NullRange, cl::NDRange(size_t(tiles), SSRCL_TILE), cl::NDRange(1, SSRCL_TILE),
+                         nullptr, newEvent(events, "resolve"));
 }
 
 void ResolveStage::finalize(cl::CommandQueue& q, const ResolveParams& params, int tiles, StageEvents& events) {

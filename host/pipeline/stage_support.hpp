@@ -88,7 +88,7 @@ std::string roughnessMappingDefine(RoughnessMapping m);
 // Of each similar neighbour's rays the resolve takes one share in this many (a pixel's own rays
 // all), neighbouring pixels different shares: 4 when the edge-aware filter follows, whose average
 // over neighbouring pixels then meets more distinct rays than the reuse gave each (corpus, high:
-// +0.2 dB, p99 error -0.25% of the peak, 112 taps instead of 400; no faster on PoCL); 1 without
+// +0.2 dB, p99 error -0.25% of the peak, 112 taps instead of 400); 1 without
 // (medium lost 0.85 dB, docs/BENCHMARKS.md).
 int resolveRayStride(const TraceSettings& s);
 // Rays a glossy pixel's estimate stands on, which sets each ray's share of the lobe (the cone of
