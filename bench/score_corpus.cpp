@@ -311,9 +311,10 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
 
   try {
-    // Configurations with settings hold commas: ';' separates them when any does.
+    // Configurations with settings hold commas: ';' separates them when any has settings (':').
     std::vector<Config> configs;
-    for (const std::string& spec : splitList(configList, configList.find(';') != std::string::npos ? ';' : ','))
+    const bool settings = configList.find_first_of(";:") != std::string::npos;
+    for (const std::string& spec : splitList(configList, settings ? ';' : ','))
       configs.push_back(parseConfig(spec));
     std::vector<Scene> scenes;
     for (const std::string& f : files) scenes.push_back({std::filesystem::path(f).stem().string(), "file", f});
