@@ -42,11 +42,3 @@ __kernel void back_level0(FrameConstants frame, __global const float4* planes, _
   back[y * size.x + x] = far_end;  // level 0 at offset 0, rows of the frame's width
 }
 
-// One reduction step: the farthest of the four texels below (the cell's pixels are theirs).
-__kernel void back_reduce(__global float* back, __global const HzbLevel* levels, int dst_level) {
-  int x = get_global_id(0), y = get_global_id(1);
-  ReduceCell c;
-  if (!reduce_cell(levels, dst_level, x, y, &c)) return;
-  float4 t = cell_texels(back, &c);
-  back[c.dst.offset + y * c.dst.width + x] = fmax(fmax(t.x, t.y), fmax(t.z, t.w));
-}

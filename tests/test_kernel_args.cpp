@@ -17,7 +17,7 @@ using ssrcl::test::sharedTestDevice;
 
 cl::Kernel hzbKernel() {
   ssrcl::Device::Impl& d = ssrcl::detail::DeviceAccess::impl(sharedTestDevice());
-  return cl::Kernel(d.program({"ssrcl_shared.h", "common.cl", "hzb.cl"}), "hzb_reduce");
+  return cl::Kernel(d.program({"ssrcl_shared.h", "common.cl", "hzb.cl"}), "depth_reduce");
 }
 
 std::string refusal(const cl::Kernel& kernel, cl_uint first, const char* names, size_t count) {
@@ -31,17 +31,18 @@ std::string refusal(const cl::Kernel& kernel, cl_uint first, const char* names, 
 }
 
 TEST(KernelArgs, TheKernelsOwnNamesPass) {
-  const cl::Kernel k = hzbKernel();  // hzb_reduce(hzb, levels, dst_level)
-  EXPECT_EQ(refusal(k, 0, "hzb, levels, dst_level", 3), "");
+  const cl::Kernel k = hzbKernel();  // depth_reduce(pyramid, levels, dst_level, farthest)
+  EXPECT_EQ(refusal(k, 0, "pyramid, levels, dst_level, farthest", 4), "");
   EXPECT_EQ(refusal(k, 1, "levels", 1), "");
 }
 
 TEST(KernelArgs, SwappedMissingOrExtraArgumentsAreRefusedByName) {
   const cl::Kernel k = hzbKernel();
-  EXPECT_EQ(refusal(k, 0, "levels, hzb", 2), "kernel hzb_reduce: argument 0 is 'hzb' but the host binds 'levels' there");
-  EXPECT_EQ(refusal(k, 0, "hzb, levels, dst_level, extra", 4),
-            "kernel hzb_reduce takes 3 arguments, the host binds 4");
-  EXPECT_EQ(refusal(k, 0, "hzb, levels", 3), "kernel hzb_reduce: the host binds 3 arguments but names 2");
+  EXPECT_EQ(refusal(k, 0, "levels, pyramid", 2),
+            "kernel depth_reduce: argument 0 is 'pyramid' but the host binds 'levels' there");
+  EXPECT_EQ(refusal(k, 0, "pyramid, levels, dst_level, farthest, extra", 5),
+            "kernel depth_reduce takes 4 arguments, the host binds 5");
+  EXPECT_EQ(refusal(k, 0, "pyramid, levels", 3), "kernel depth_reduce: the host binds 3 arguments but names 2");
 }
 
 // Every stage binds through the check, and from the frame resource table only the roles it

@@ -7,9 +7,8 @@ namespace ssrcl::detail {
 const StageAccess BackPyramidStage::access{"back pyramid", {Role::Planes, Role::PyramidLevels}, {Role::BackPyramid}};
 
 void BackPyramidStage::configure(Device::Impl& device) {
-  const cl::Program& program = device.program({"ssrcl_shared.h", "common.cl", "back_pyramid.cl"});
-  level0_ = cl::Kernel(program, "back_level0");
-  reduce_ = cl::Kernel(program, "back_reduce");
+  level0_ = cl::Kernel(device.program({"ssrcl_shared.h", "common.cl", "back_pyramid.cl"}), "back_level0");
+  reduce_ = cl::Kernel(device.program({"ssrcl_shared.h", "common.cl", "hzb.cl"}), "depth_reduce");
 }
 
 void BackPyramidStage::plan(FrameResources& resources, DeviceBuffers& buffers, const FrameShape& frame) {
@@ -20,7 +19,8 @@ void BackPyramidStage::plan(FrameResources& resources, DeviceBuffers& buffers, c
 void BackPyramidStage::bind(const FrameResources& resources) {
   const cl::Buffer& back = resources.write(access, Role::BackPyramid);
   bindArgs(level0_, 1, "planes, back", resources.read(access, Role::Planes), back);
-  bindArgs(reduce_, 0, "back, levels", back, resources.read(access, Role::PyramidLevels));
+  bindArgs(reduce_, 0, "pyramid, levels", back, resources.read(access, Role::PyramidLevels));
+  bindArgs(reduce_, 3, "farthest", cl_int(1));
 }
 
 void BackPyramidStage::enqueue(cl::CommandQueue& q, const FrameConstants& frame, StageEvents& events) {

@@ -5,7 +5,7 @@ namespace ssrcl::detail {
 const StageAccess HzbStage::access{"hzb", {}, {Role::DepthPyramid, Role::PyramidLevels}};
 
 void HzbStage::configure(Device::Impl& device) {
-  kernel_ = cl::Kernel(device.program({"ssrcl_shared.h", "common.cl", "hzb.cl"}), "hzb_reduce");
+  kernel_ = cl::Kernel(device.program({"ssrcl_shared.h", "common.cl", "hzb.cl"}), "depth_reduce");
 }
 
 void HzbStage::plan(FrameResources& resources, DeviceBuffers& buffers, const FrameShape& frame) {
@@ -17,7 +17,8 @@ void HzbStage::plan(FrameResources& resources, DeviceBuffers& buffers, const Fra
 void HzbStage::bind(cl::CommandQueue& q, const FrameResources& resources) {
   const cl::Buffer& levels = resources.write(access, Role::PyramidLevels);
   q.enqueueWriteBuffer(levels, CL_TRUE, 0, frame_.levels.size() * sizeof(HzbLevel), frame_.levels.data());
-  bindArgs(kernel_, 0, "hzb, levels", resources.write(access, Role::DepthPyramid), levels);
+  bindArgs(kernel_, 0, "pyramid, levels", resources.write(access, Role::DepthPyramid), levels);
+  bindArgs(kernel_, 3, "farthest", cl_int(0));
 }
 
 // Work-groups of one 64-texel row: PoCL vectorises a group's work-item loop along x, and the reduction
