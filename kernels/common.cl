@@ -112,3 +112,34 @@ inline int2 tile_pixel(__global const int* tile_list, int tiles_x) {
   return (int2)((tile % tiles_x) * SSRCL_TILE + (int)get_local_id(0),
                 (tile / tiles_x) * SSRCL_TILE + (int)get_local_id(1));
 }
+
+// Field `field` of the eight elements of array a, one to a lane.
+#define SSRCL_LANES(a, field) \
+  (float8)(a[0].field, a[1].field, a[2].field, a[3].field, a[4].field, a[5].field, a[6].field, a[7].field)
+
+// Record slot.sN of each lane N, transposed: one float8 per component.
+typedef struct {
+  float8 x, y, z, w;
+} RecordLanes;
+
+inline RecordLanes record_lanes(__global const float4* records, int8 slot) {
+  float16 a = (float16)(records[slot.s0], records[slot.s1], records[slot.s2], records[slot.s3]).s048c159d26ae37bf;
+  float16 b = (float16)(records[slot.s4], records[slot.s5], records[slot.s6], records[slot.s7]).s048c159d26ae37bf;
+  RecordLanes r = {(float8)(a.s0123, b.s0123), (float8)(a.s4567, b.s4567), (float8)(a.s89ab, b.s89ab),
+                   (float8)(a.scdef, b.scdef)};
+  return r;
+}
+
+// dot(n_p, n_q) of each lane, rounded as PoCL's dot() of two float3 rounds it (the three products,
+// then (x + y) + z, no fused multiply-add), so that kernels with a pixel to a lane compare normals
+// as their per-pixel forms did, bit for bit.
+inline float8 dot_lanes(float8 ax, float8 ay, float8 az, float8 bx, float8 by, float8 bz) {
+#pragma OPENCL FP_CONTRACT OFF
+  float8 x = ax * bx, y = ay * by, z = az * bz;
+  return (x + y) + z;
+}
+
+inline int max_lane(int8 v) {
+  int4 m = max(v.lo, v.hi);
+  return max(max(m.x, m.y), max(m.z, m.w));
+}

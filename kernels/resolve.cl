@@ -75,19 +75,6 @@ inline float8 ggx_reuse_weights(GgxLobes lobe, float8 lx, float8 ly, float8 lz, 
   return select((float8)(0.0f), w, lz > 0.0f);
 }
 
-// Record slot.sN of each lane N, transposed: one float8 per component.
-typedef struct {
-  float8 x, y, z, w;
-} RecordLanes;
-
-inline RecordLanes record_lanes(__global const float4* records, int8 slot) {
-  float16 a = (float16)(records[slot.s0], records[slot.s1], records[slot.s2], records[slot.s3]).s048c159d26ae37bf;
-  float16 b = (float16)(records[slot.s4], records[slot.s5], records[slot.s6], records[slot.s7]).s048c159d26ae37bf;
-  RecordLanes r = {(float8)(a.s0123, b.s0123), (float8)(a.s4567, b.s4567), (float8)(a.s89ab, b.s89ab),
-                   (float8)(a.scdef, b.scdef)};
-  return r;
-}
-
 // What a glossy pixel's taps share besides its lobe: its point, normal and tangents, depth.
 typedef struct {
   float3 p, n, tx, ty;
@@ -98,9 +85,6 @@ typedef struct {
 typedef struct {
   float8 px, py, pz, nx, ny, nz, txx, txy, txz, tyx, tyy, tyz, depth, inv_depth;
 } TapFrames;
-
-#define SSRCL_LANES(a, field) \
-  (float8)(a[0].field, a[1].field, a[2].field, a[3].field, a[4].field, a[5].field, a[6].field, a[7].field)
 
 // One tap's terms of the sums, or a group's: w, w c L (rgb), w c, w c d.
 typedef struct {
@@ -146,20 +130,6 @@ inline TapSums resolve_taps(__global const float4* ray_hit, __global const float
 #error "resolve_accumulate's quotient() divides by at most 4"
 #endif
 inline int8 quotient(int8 n, float8 inv_d) { return convert_int8(convert_float8(n) * inv_d); }
-
-// dot(n_p, n_q) of each lane, rounded as PoCL's dot() of two float3 rounds it (the three products,
-// then (x + y) + z, no fused multiply-add), so that the lanes judge neighbours as the per-pixel
-// resolve did, bit for bit.
-inline float8 dot_lanes(float8 ax, float8 ay, float8 az, float8 bx, float8 by, float8 bz) {
-#pragma OPENCL FP_CONTRACT OFF
-  float8 x = ax * bx, y = ay * by, z = az * bz;
-  return (x + y) + z;
-}
-
-inline int max_lane(int8 v) {
-  int4 m = max(v.lo, v.hi);
-  return max(max(m.x, m.y), max(m.z, m.w));
-}
 
 #if SSRCL_VIEWS
 inline void add_source(__global float* sources, __global const uchar* ray_state, size_t r, float found) {

@@ -1,7 +1,5 @@
 #include "filter_stage.hpp"
 
-#include "resolve_stage.hpp"
-
 namespace ssrcl::detail {
 
 const StageAccess FilterStage::access{"denoise",
@@ -31,8 +29,9 @@ void FilterStage::bind(const FrameResources& resources) {
 void FilterStage::enqueue(cl::CommandQueue& q, const FrameConstants& frame, int tiles, StageEvents& events) {
   if (!enabled_ || tiles == 0) return;
   kernel_.setArg(0, FilterParams{frame});
-  q.enqueueNDRangeKernel(kernel_, cl::NullRange, listedTiles(tiles), cl::NDRange(SSRCL_TILE, SSRCL_TILE), nullptr,
-                         newEvent(events, "denoise"));
+  // One work-item a tile row (kernels/filter.cl: its pixels in float8 lanes).
+  q.enqueueNDRangeKernel(kernel_, cl::NullRange, cl::NDRange(size_t(tiles), SSRCL_TILE), cl::NDRange(1, SSRCL_TILE),
+                         nullptr, newEvent(events, "denoise"));
 }
 
 }  // namespace ssrcl::detail
