@@ -1,6 +1,6 @@
 // Optional edge-aware spatial filter of the resolved glossy pass: a Gaussian whose radius grows
-// with roughness (rougher lobes vary slowly), stopped at depth and normal edges so reflections
-// do not bleed across objects. Mirror-like and untraced pixels pass through unchanged. Runs over
+// with roughness (rougher lobes vary slowly), stopped where a neighbour leaves the pixel's plane or
+// its normal turns, so reflections do not bleed across objects. Mirror-like and untraced pixels pass through unchanged. Runs over
 // the listed tiles: pixels that reflect lie in them, and it reads no others.
 //
 // A work-item filters one row of a tile, one pixel to a float8 lane (as resolve_accumulate does):
