@@ -22,8 +22,8 @@ __kernel void denoise(FilterParams params, __global const int* tile_list, __glob
                       __global float4* out_rgba, __global float* out_distance) {
   const int2 size = (int2)(params.frame.width, params.frame.height);
   const float mirror_roughness = params.frame.mirror_roughness;
-  const int tile = tile_list[get_group_id(0)];
-  const int x0 = (tile % params.frame.tiles_x) * SSRCL_TILE, y = (tile / params.frame.tiles_x) * SSRCL_TILE + (int)get_local_id(1);
+  const int2 row = tile_pixel(tile_list, params.frame.tiles_x);  // work-groups (1, SSRCL_TILE): a row's first pixel
+  const int x0 = row.x, y = row.y;
   if (y >= size.y) return;
   // Each lane's pixel: its radius (-1: it takes no taps), 2 sigma^2, normal, inverse depth and the
   // gradient of inverse depth.

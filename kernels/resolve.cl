@@ -148,8 +148,8 @@ __kernel void resolve_accumulate(ResolveParams params, __global const int* tile_
   const float16 inv_proj = vload16(0, params.frame.inv_proj);
   const int batch_size = params.batch_size, first_sample = params.first_sample, reuse_radius = params.reuse_radius;
   const float mirror_roughness = params.frame.mirror_roughness;
-  const int tile = tile_list[get_group_id(0)];
-  const int x0 = (tile % params.frame.tiles_x) * SSRCL_TILE, y = (tile / params.frame.tiles_x) * SSRCL_TILE + (int)get_local_id(1);
+  const int2 row = tile_pixel(tile_list, params.frame.tiles_x);  // work-groups (1, SSRCL_TILE): a row's first pixel
+  const int x0 = row.x, y = row.y;
   if (y >= size.y) return;
   const bool first = first_sample == 0;
 

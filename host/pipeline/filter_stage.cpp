@@ -1,5 +1,7 @@
 #include "filter_stage.hpp"
 
+#include "resolve_stage.hpp"
+
 namespace ssrcl::detail {
 
 const StageAccess FilterStage::access{"denoise",
@@ -29,9 +31,7 @@ void FilterStage::bind(const FrameResources& resources) {
 void FilterStage::enqueue(cl::CommandQueue& q, const FrameConstants& frame, int tiles, StageEvents& events) {
   if (!enabled_ || tiles == 0) return;
   kernel_.setArg(0, FilterParams{frame});
-  // One work-item a tile row (kernels/filter.cl: its pixels in float8 lanes).
-  q.enqueueNDRangeKernel(kernel_, cl::NullRange, cl::NDRange(size_t(tiles), SSRCL_TILE), cl::NDRange(1, SSRCL_TILE),
-                         nullptr, newEvent(events, "denoise"));
+  enqueueTileRows(q, kernel_, tiles, newEvent(events, "denoise"));
 }
 
 }  // namespace ssrcl::detail

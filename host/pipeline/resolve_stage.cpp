@@ -2,7 +2,15 @@
 
 namespace ssrcl::detail {
 
+namespace {
+// The range of `tiles` listed tiles as 2D SSRCL_TILE work-groups side by side.
 cl::NDRange listedTiles(int tiles) { return cl::NDRange(size_t(tiles) * SSRCL_TILE, SSRCL_TILE); }
+}  // namespace
+
+void enqueueTileRows(cl::CommandQueue& q, cl::Kernel& kernel, int tiles, cl::Event* event) {
+  q.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(size_t(tiles), SSRCL_TILE), cl::NDRange(1, SSRCL_TILE),
+                         nullptr, event);
+}
 
 const StageAccess ResolveStage::access{"resolve",
                                        {Role::TileList, Role::Positions, Role::Normals, Role::PixelRays, Role::RayHits,
@@ -50,9 +58,7 @@ ResolveParams ResolveStage::params(const FrameConstants& frame, const TraceSetti
 
 void ResolveStage::accumulate(cl::CommandQueue& q, const ResolveParams& params, int tiles, StageEvents& events) {
   accumulate_.setArg(0, params);
-  // One work-item a tile row (kernels/resolve.cl: its pixels in float8 lanes).
-  q.enqueueNDRangeKernel(accumulate_, cl::NullRange, cl::NDRange(size_t(tiles), SSRCL_TILE), cl::NDRange(1, SSRCL_TILE),
-                         nullptr, newEvent(events, "resolve"));
+  enqueueTileRows(q, accumulate_, tiles, newEvent(events, "resolve"));
 }
 
 void ResolveStage::finalize(cl::CommandQueue& q, const ResolveParams& params, int tiles, StageEvents& events) {

@@ -28,7 +28,9 @@ class ResolveStage {
   cl::Buffer radiance_, weight_, sources_;  // running sums across batches
 };
 
-// The range of `tiles` listed tiles as 2D SSRCL_TILE work-groups side by side.
-cl::NDRange listedTiles(int tiles);
+// Runs `kernel` with one work-item a row of each of `tiles` listed tiles: work-groups of
+// (1, SSRCL_TILE), group g on tile tile_list[g]. For kernels that put a row's pixels in float8
+// lanes (resolve_accumulate, denoise).
+void enqueueTileRows(cl::CommandQueue& q, cl::Kernel& kernel, int tiles, cl::Event* event);
 
 }  // namespace ssrcl::detail
