@@ -6,7 +6,8 @@ namespace ssrcl::detail {
 
 const StageAccess BackPyramidStage::access{"back pyramid", {Role::Planes, Role::PyramidLevels}, {Role::BackPyramid}};
 
-void BackPyramidStage::configure(Device::Impl& device) {
+void BackPyramidStage::configure(Device::Impl& device, bool used) {
+  used_ = used;
   level0_ = cl::Kernel(device.program({"ssrcl_shared.h", "common.cl", "back_pyramid.cl"}), "back_level0");
   reduce_ = cl::Kernel(device.program({"ssrcl_shared.h", "common.cl", "hzb.cl"}), "depth_reduce");
 }
@@ -24,6 +25,7 @@ void BackPyramidStage::bind(const FrameResources& resources) {
 }
 
 void BackPyramidStage::enqueue(cl::CommandQueue& q, const FrameConstants& frame, StageEvents& events) {
+  if (!used_) return;
   level0_.setArg(0, frame);
   q.enqueueNDRangeKernel(level0_, cl::NullRange,
                          cl::NDRange(roundUp(frame_.width, SSRCL_TILE), roundUp(frame_.height, SSRCL_TILE)),

@@ -10,13 +10,16 @@ class BackPyramidStage {
  public:
   static const StageAccess access;
 
-  void configure(Device::Impl& device);
+  // `used`: only the Hi-Z trace without views reads the pyramid (kernels/trace.cl SSRCL_BACK_SKIP);
+  // for the others it is not built.
+  void configure(Device::Impl& device, bool used);
   void plan(FrameResources& resources, DeviceBuffers& buffers, const FrameShape& frame);
   void bind(const FrameResources& resources);
   void enqueue(cl::CommandQueue& q, const FrameConstants& frame, StageEvents& events);
 
  private:
   FrameShape frame_;
+  bool used_ = false;
   cl::Kernel level0_, reduce_;
 };
 

@@ -117,7 +117,7 @@ void Pipeline::Impl::plan() {
     setup.configure(d);
     thickness.configure(d, settings, back);
     hzb.configure(d);
-    backPyramid.configure(d);
+    backPyramid.configure(d, settings.tracer == Tracer::HiZ && viewCount == 0);
     colors.configure(d, settings);
     trace.configure(d, settings, base, materials, viewCount > 0);
     resolve.configure(d, settings, viewCount);
