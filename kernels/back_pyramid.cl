@@ -1,7 +1,8 @@
-// The back pyramid: per texel the farthest planar depth at which a ray over its pixels can hit a
-// surface (trace.cl hit_pixel), in the HZB's layout. The Hi-Z trace skips a cell the ray crosses
-// wholly behind it, where the min-depth HZB alone makes it descend and step pixel by pixel until
-// it comes out in front.
+// The range pyramid: per texel the HZB's nearest depth (x) and the farthest planar depth at which
+// a ray over its pixels can hit a surface (y, trace.cl hit_pixel), in the HZB's layout. The Hi-Z
+// trace skips a cell the ray crosses wholly behind y, where the min-depth HZB alone makes it
+// descend and step pixel by pixel until it comes out in front. Both ends of a texel in one
+// record: a step's one read (the ends apart, a step read two cache lines).
 //
 // hit_pixel hits a pixel's surface where the ray crosses its plane or lies behind it by at most
 // one thickness: every hit point is in the slab between the plane and its copy one thickness
@@ -22,7 +23,8 @@ inline float slab_far_end(float16 inv_proj, int2 size, float2 corner, float3 n, 
   return fmax((c - from) / along, (c - 1.0f - from) / along) - origin.z;  // planar depth (view_line)
 }
 
-__kernel void back_level0(FrameConstants frame, __global const float4* planes, __global float* back) {
+__kernel void back_level0(FrameConstants frame, __global const float* hzb, __global const float4* planes,
+                          __global float2* range) {
   const int2 size = (int2)(frame.width, frame.height);
   int x = get_global_id(0), y = get_global_id(1);
   if (x >= size.x || y >= size.y) return;
@@ -39,6 +41,19 @@ __kernel void back_level0(FrameConstants frame, __global const float4* planes, _
     // A thousandth more: the trace compares its own rounded depths with these.
     far_end = (sign == 1 || sign == 2) && isfinite(far_end) ? far_end + 1e-3f * fabs(far_end) : INFINITY;
   }
-  back[y * size.x + x] = far_end;  // level 0 at offset 0, rows of the frame's width
+  const int i = y * size.x + x;  // level 0 at offset 0, rows of the frame's width
+  range[i] = (float2)(hzb[i], far_end);
+}
+
+// One reduction step of the range pyramid: x as the HZB's (depth_reduce, so equal to it), y the
+// farthest of the four.
+__kernel void range_reduce(__global float2* pyramid, __global const HzbLevel* levels, int dst_level) {
+  int x = get_global_id(0), y = get_global_id(1);
+  ReduceCell c;
+  if (!reduce_cell(levels, dst_level, x, y, &c)) return;
+  int4 i = cell_texel_indices(&c);
+  float2 a = pyramid[i.x], b = pyramid[i.y], d = pyramid[i.z], e = pyramid[i.w];
+  pyramid[c.dst.offset + y * c.dst.width + x] =
+      (float2)(fmin(fmin(a.x, b.x), fmin(d.x, e.x)), fmax(fmax(a.y, b.y), fmax(d.y, e.y)));
 }
 

@@ -40,10 +40,15 @@ inline float2 ndc_to_pixel(float2 ndc, int2 size) {
   return (float2)((ndc.x + 1.0f) * 0.5f * (float)size.x, (1.0f - ndc.y) * 0.5f * (float)size.y);
 }
 
-inline float hzb_fetch(__global const float* hzb, __global const HzbLevel* levels, int level, int2 cell) {
+// Where a level's texel lies in a pyramid buffer (the cell clamped to the level).
+inline int pyramid_index(__global const HzbLevel* levels, int level, int2 cell) {
   HzbLevel l = levels[level];
   cell = clamp(cell, (int2)(0, 0), (int2)(l.width - 1, l.height - 1));
-  return hzb[l.offset + cell.y * l.width + cell.x];
+  return l.offset + cell.y * l.width + cell.x;
+}
+
+inline float hzb_fetch(__global const float* hzb, __global const HzbLevel* levels, int level, int2 cell) {
+  return hzb[pyramid_index(levels, level, cell)];
 }
 
 // The fine texels that the pyramids' reductions (hzb.cl, color_pyramid.cl) combine into texel
@@ -65,11 +70,11 @@ inline bool reduce_cell(__global const HzbLevel* levels, int dst_level, int x, i
   return true;
 }
 
-// The four source texels under a reduction cell of `pyramid` (one buffer, levels at their offsets).
-inline float4 cell_texels(__global const float* pyramid, const ReduceCell* c) {
-  __global const float* s = pyramid + c->src.offset;
-  int w = c->src.width;
-  return (float4)(s[c->y0 * w + c->x0], s[c->y0 * w + c->x1], s[c->y1 * w + c->x0], s[c->y1 * w + c->x1]);
+// Where the four source texels under a reduction cell lie in its pyramid (one buffer, levels at
+// their offsets).
+inline int4 cell_texel_indices(const ReduceCell* c) {
+  int s = c->src.offset, w = c->src.width;
+  return (int4)(s + c->y0 * w + c->x0, s + c->y0 * w + c->x1, s + c->y1 * w + c->x0, s + c->y1 * w + c->x1);
 }
 
 // The viewing line through NDC (x, y) as a point on it and a step along it (eye -> scene) that

@@ -82,7 +82,7 @@ typedef struct {
   // hit (a ray that starts hidden, as from a surface a view sees from behind, is not held to it
   // until it comes into view); its hit was found within a surface's thickness.
   int seen, behind, thick;
-  __global const float* back;  // the back pyramid (SSRCL_BACK_SKIP), levels as the HZB's
+  __global const float2* range;  // the range pyramid (SSRCL_BACK_SKIP, back_pyramid.cl): y = farthest hit
 } TraceScene;
 
 // The ray's signed distance to a pixel's plane (n, dot(p, n)) / thickness, in thicknesses, times
@@ -132,7 +132,7 @@ inline float hit_pixel(TraceScene* sc, const ScreenRay* ray, float3 dir, int2 ce
 inline bool behind_back(TraceScene* sc, const ScreenRay* ray, float t0, float t1, int mip, int2 cell) {
   if (!SSRCL_BACK_SKIP) return false;
   ++sc->fetches;
-  return fmin(ray_depth(ray, fmin(t0, 1.0f)), ray_depth(ray, fmin(t1, 1.0f))) > hzb_fetch(sc->back, sc->levels, mip, cell);
+  return fmin(ray_depth(ray, fmin(t0, 1.0f)), ray_depth(ray, fmin(t1, 1.0f))) > sc->range[pyramid_index(sc->levels, mip, cell)].y;
 }
 
 // Hierarchical traversal (FidelityFX SSSR style): climb while the ray stays in front of a cell's
@@ -202,6 +202,14 @@ inline float8 gather8(__global const float* a, int8 i) {
   return (float8)(a[i.s0], a[i.s1], a[i.s2], a[i.s3], a[i.s4], a[i.s5], a[i.s6], a[i.s7]);
 }
 
+// Eight float2 records as two float8s.
+inline float8 gather8_xy(__global const float2* a, int8 i, float8* y) {
+  float2 v0 = a[i.s0], v1 = a[i.s1], v2 = a[i.s2], v3 = a[i.s3], v4 = a[i.s4], v5 = a[i.s5], v6 = a[i.s6],
+         v7 = a[i.s7];
+  *y = (float8)(v0.y, v1.y, v2.y, v3.y, v4.y, v5.y, v6.y, v7.y);
+  return (float8)(v0.x, v1.x, v2.x, v3.x, v4.x, v5.x, v6.x, v7.x);
+}
+
 // Eight float4 records as four float8s: one vector load a record, then shuffles (not a load per
 // float).
 inline float8 gather8_xyzw(__global const float4* a, int8 i, float8* y, float8* z, float8* w) {
@@ -216,7 +224,9 @@ inline float8 gather8_xyzw(__global const float4* a, int8 i, float8* y, float8* 
 // cell_exit per lane.
 inline float8 cell_exit8(const ScreenRays8* r, float8 t, float8 nudge, float8 cell_size, int8* cx, int8* cy) {
   float8 ta = t + nudge;
-  float8 fx = floor((r->s0x + ta * r->dsx) / cell_size), fy = floor((r->s0y + ta * r->dsy) / cell_size);
+  // cell_size is a power of two: times its reciprocal (the exponent negated) is the same quotient.
+  float8 inv_cell = as_float8((int8)(254 << 23) - as_int8(cell_size));
+  float8 fx = floor((r->s0x + ta * r->dsx) * inv_cell), fy = floor((r->s0y + ta * r->dsy) * inv_cell);
   *cx = convert_int8(fx);
   *cy = convert_int8(fy);
   // The boundary in its own statement: folded into the subtraction it would round once (an FMA).
@@ -283,7 +293,6 @@ inline void trace_hiz_lanes(TraceScene* sc, const ScreenRay* rays, const float3*
   int8 seen = vload8(0, lane_seen) != 0, behind = 0, thick = 0;
   const int top = sc->level_count - 1;
   const bool back_skip = SSRCL_BACK_SKIP;
-  __global const float4* levels = (__global const float4*)sc->levels;  // HzbLevel: 4 ints, read as bits
 
   float8 nudge = 0.01f / fmax(fabs(r.dsx), fabs(r.dsy));
   int8 deeper = r.q0z * r.dqw - r.dqz * r.q0w > 0.0f;
@@ -317,14 +326,18 @@ inline void trace_hiz_lanes(TraceScene* sc, const ScreenRay* rays, const float3*
     int8 back_reads = 0;
     const int8 climbing = back_skip ? fine & ~hit & ~in_front : 0;  // a fine lane's climb reads it
     if (any(coarse | climbing)) {
-      float8 l_width, l_height, unused;
-      int8 l_offset = as_int8(gather8_xyzw(levels, mip, &l_width, &l_height, &unused));
-      int8 width = as_int8(l_width);
-      int8 texel = l_offset + clamp(cy, 0, as_int8(l_height) - 1) * width + clamp(cx, 0, width - 1);
-      if (any(coarse)) d_min = gather8(sc->hzb, texel);
+      // A level is ceil(fine / 2) of the one below (stage_support.cpp): its size by shifts, its
+      // offset (the records' first field) by one gather.
+      int8 width = ((int8)(sc->size.x) + ((int8)(1) << mip) - 1) >> mip;
+      int8 height = ((int8)(sc->size.y) + ((int8)(1) << mip) - 1) >> mip;
+      int8 texel = as_int8(gather8((__global const float*)sc->levels, mip * 4)) + clamp(cy, 0, height - 1) * width +
+                   clamp(cx, 0, width - 1);
+      // The range pyramid holds the HZB's depth beside the farthest hit: one record a texel.
       if (back_skip) {
-        d_back = gather8(sc->back, texel);
-        back_reads = climbing | (coarse & (depth_t >= d_min));
+        d_min = gather8_xy(sc->range, texel, &d_back);
+        back_reads = climbing;
+      } else if (any(coarse)) {
+        d_min = gather8(sc->hzb, texel);
       }
     }
     int8 front = depth_t < d_min;
@@ -549,7 +562,7 @@ typedef struct {
 //   ray_hit      hit: (view-space hit point, confidence >= 0); miss: (direction, -1)
 //   ray_radiance (rgb at the hit, pdf of the direction); pdf 0 marks a ray that is a delta
 //                (mirror) or was not traced, which neighbours must not reuse.
-__kernel void trace_rays(TraceParams params, __global const float* hzb, __global const float* back,
+__kernel void trace_rays(TraceParams params, __global const float* hzb, __global const float2* range,
                          __global const HzbLevel* levels,
                          __global const float4* positions, __global const float4* normals,
                          __global const int* ray_list, __global const int* pixel_rays,
@@ -578,7 +591,7 @@ __kernel void trace_rays(TraceParams params, __global const float* hzb, __global
     int2 lane_cell[SSRCL_TRACE_LANES];
     for (int k = 0; k < SSRCL_TRACE_LANES; ++k) {
       const ScreenRay none = {(float2)(0.0f), (float2)(0.0f), (float4)(0.0f), (float4)(0.0f)};
-      const TraceScene sc = {size, hzb, levels, level_count, planes, normals, params.max_iterations, 0, 0, 0, 0, 0, back};
+      const TraceScene sc = {size, hzb, levels, level_count, planes, normals, params.max_iterations, 0, 0, 0, 0, 0, range};
       scene[k] = sc;  // every lane's: trace_hiz_lanes reads the frame from scene[0]
       lane[k].traced = lane_live[k] = 0;
       lane_ray[k] = none;  // lanes without a ray are traced too, their results unused

@@ -4,24 +4,25 @@
 
 namespace ssrcl::detail {
 
-const StageAccess BackPyramidStage::access{"back pyramid", {Role::Planes, Role::PyramidLevels}, {Role::BackPyramid}};
+const StageAccess BackPyramidStage::access{
+    "back pyramid", {Role::DepthPyramid, Role::Planes, Role::PyramidLevels}, {Role::BackPyramid}};
 
 void BackPyramidStage::configure(Device::Impl& device, bool used) {
   used_ = used;
   level0_ = cl::Kernel(device.program({"ssrcl_shared.h", "common.cl", "back_pyramid.cl"}), "back_level0");
-  reduce_ = cl::Kernel(device.program({"ssrcl_shared.h", "common.cl", "hzb.cl"}), "depth_reduce");
+  reduce_ = cl::Kernel(device.program({"ssrcl_shared.h", "common.cl", "back_pyramid.cl"}), "range_reduce");
 }
 
 void BackPyramidStage::plan(FrameResources& resources, DeviceBuffers& buffers, const FrameShape& frame) {
   frame_ = frame;
-  resources.plan(access, buffers, Role::BackPyramid, frame.pyramidTexels() * sizeof(float));
+  resources.plan(access, buffers, Role::BackPyramid, frame.pyramidTexels() * sizeof(cl_float2));
 }
 
 void BackPyramidStage::bind(const FrameResources& resources) {
   const cl::Buffer& back = resources.write(access, Role::BackPyramid);
-  bindArgs(level0_, 1, "planes, back", resources.read(access, Role::Planes), back);
+  bindArgs(level0_, 1, "hzb, planes, range", resources.read(access, Role::DepthPyramid),
+           resources.read(access, Role::Planes), back);
   bindArgs(reduce_, 0, "pyramid, levels", back, resources.read(access, Role::PyramidLevels));
-  bindArgs(reduce_, 3, "farthest", cl_int(1));
 }
 
 void BackPyramidStage::enqueue(cl::CommandQueue& q, const FrameConstants& frame, StageEvents& events) {

@@ -20,7 +20,7 @@ enum class Role {
   TileList,          // the listed tiles
   DepthPyramid,      // the HZB, every level packed, level 0 at offset 0
   PyramidLevels,     // HzbLevel per level, of all three pyramids
-  BackPyramid,       // farthest hit depth per texel, levels as the HZB's (kernels/back_pyramid.cl)
+  BackPyramid,       // per texel (nearest depth, farthest hit depth), levels as the HZB's (back_pyramid.cl)
   ColorPyramid,      // (rgb * hits, hits) per texel, levels as the HZB's; level 0 (rgb, hits)
   RayHits,           // per (pixel, batch slot); see kernels/trace.cl
   RayRadiance,       // per (pixel, batch slot)

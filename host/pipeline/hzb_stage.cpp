@@ -18,7 +18,6 @@ void HzbStage::bind(cl::CommandQueue& q, const FrameResources& resources) {
   const cl::Buffer& levels = resources.write(access, Role::PyramidLevels);
   q.enqueueWriteBuffer(levels, CL_TRUE, 0, frame_.levels.size() * sizeof(HzbLevel), frame_.levels.data());
   bindArgs(kernel_, 0, "pyramid, levels", resources.write(access, Role::DepthPyramid), levels);
-  bindArgs(kernel_, 3, "farthest", cl_int(0));
 }
 
 // Work-groups of one 64-texel row: PoCL vectorises a group's work-item loop along x, and the reduction

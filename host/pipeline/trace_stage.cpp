@@ -86,7 +86,7 @@ void TraceStage::bind(const FrameResources& resources) {
   auto in = [&](Role role) { return resources.read(access, role); };
   auto out = [&](Role role) { return resources.write(access, role); };
   bindArgs(kernel_, 1,
-           "hzb, back, levels, positions, normals, ray_list, pixel_rays, planes, work_counters, color_pyramid, base, "
+           "hzb, range, levels, positions, normals, ray_list, pixel_rays, planes, work_counters, color_pyramid, base, "
            "specular, f0, albedo, ray_hit, ray_radiance, ray_state",
            in(Role::DepthPyramid), in(Role::BackPyramid), in(Role::PyramidLevels), in(Role::Positions), in(Role::Normals), in(Role::RayList),
            in(Role::PixelRays), in(Role::Planes), workCounters_, in(Role::ColorPyramid), baseIn_, specularIn_, f0In_,
