@@ -51,9 +51,10 @@ inline float hzb_fetch(__global const float* hzb, __global const HzbLevel* level
   return hzb[pyramid_index(levels, level, cell)];
 }
 
-// The fine texels that the pyramids' reductions (hzb.cl, color_pyramid.cl) combine into texel
-// (x, y) of level dst_level: x0..x1, y0..y1 of the level below, clamped at its edge (a coarse
-// level is ceil(fine / 2), so an edge texel may cover one fine column or row). False outside.
+// The fine texels that the pyramids' reductions (hzb.cl, back_pyramid.cl, color_pyramid.cl)
+// combine into texel (x, y) of level dst_level: x0..x1, y0..y1 of the level below, clamped at its
+// edge (a coarse level is ceil(fine / 2), so an edge texel may cover one fine column or row).
+// False outside.
 typedef struct {
   HzbLevel dst, src;
   int x0, y0, x1, y1;
