@@ -19,10 +19,12 @@ declare -A args=(
   [draft-t5]="--quality draft --temporal 5"
   [high-t5]="--quality high --temporal 5"
   [medium-t2]="--quality medium --temporal 2"
+  [medium-t3]="--quality medium --temporal 3"
+  [medium-t8]="--quality medium --temporal 8"
   [medium-frameseeds]="--quality medium --temporal 0"  # each frame its own seed, as --temporal's
 )
 configs=("$@")
-[ ${#configs[@]} -gt 0 ] || configs=(draft medium high draft-t5 medium-t2 medium-t5 high-t5 medium-frameseeds)
+[ ${#configs[@]} -gt 0 ] || configs=(draft medium high draft-t5 medium-t2 medium-t3 medium-t5 medium-t8 high-t5 medium-frameseeds)
 names=${SSRCL_SHOTS:-}
 names=${names//,/ }
 [ -n "$names" ] || names=$(python3 -c 'import json,sys; print(" ".join(s["name"] for s in json.load(open(sys.argv[1]))["shots"]))' "$shots/shots.json")

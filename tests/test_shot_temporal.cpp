@@ -73,8 +73,11 @@ TEST(ShotTemporal, BlendHoldsStillAndBeatsEachFrameAlone) {
   const ShotScore a = score(dir.file("alone")), b = score(dir.file("blended"));
   std::cout << "alone: PSNR " << a.psnr << " tPSNR " << a.tpsnr << "; --temporal 2: PSNR " << b.psnr << " tPSNR "
             << b.tpsnr << "\n";
-  EXPECT_GT(b.tpsnr, a.tpsnr + 0.4);  // measured +0.74 dB (26.42 -> 27.16)
-  EXPECT_GT(b.psnr, a.psnr - 0.1);    // measured +0.003 dB (17.64)
+  // Measured +0.78 dB (26.80 -> 27.58). With the hit-distance and moved tests at their sharp-lobe
+  // tolerance on this rough floor (TemporalSettings::roughnessSpread 0) the blend refuses most of
+  // its history and gains +0.60 dB (27.40): this bound fails there.
+  EXPECT_GT(b.tpsnr, a.tpsnr + 0.69);
+  EXPECT_GT(b.psnr, a.psnr - 0.1);  // measured +0.02 dB (17.70)
 }
 
 TEST(ShotTemporal, ShardsAndResumeEqualTheWholeRun) {

@@ -3,7 +3,8 @@
 // floor pixel's mirror ray meets it, plus independent noise; its hit distance is exact. Blending
 // must find each neighbour where it reflects the same ceiling point (the reflected point), so
 // the blend's error against the exact colour falls as the noise averages; it must refuse
-// neighbours whose hit distances disagree, and leave mirror pixels alone.
+// neighbours whose hit distances disagree by more than the lobe's roughness spreads them, and
+// leave mirror pixels alone.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -105,11 +106,28 @@ TEST(TemporalBlend, AveragesNoiseAtTheReflectedPoint) {
 }
 
 TEST(TemporalBlend, RefusesNeighboursWhoseHitsDisagree) {
-  // Neighbours' hits on a ceiling 50% higher: their hit distances are 50% off, every one refused.
+  // Neighbours' hits on a ceiling twice as high: their hit distances are 100% off, more than a
+  // lobe of roughness 0.3 spreads them (20% + 2 x 0.3 = 80%), every one refused.
   std::vector<AnalyticFrame> frames;
-  for (int f = -2; f <= 2; ++f) frames.push_back(makeFrame(f, 0.2, f == 0 ? kCeiling : 1.5 * kCeiling));
+  for (int f = -2; f <= 2; ++f) frames.push_back(makeFrame(f, 0.2, f == 0 ? kCeiling : 2.0 * kCeiling));
   const ssrcl::Image blended = ssrcl::temporalBlend(window(frames), 2, {});
   EXPECT_EQ(blended.data, frames[2].reflection.data);
+}
+
+// A rough lobe's hit distance is a mean over hits spread across it: between views it is off by
+// more than a sharp lobe's. 40% off is taken at roughness 0.3 (tolerance 80%) and refused at
+// 0.05 (30%), and by the tolerance of a lobe without spread (roughnessSpread 0: 20%).
+TEST(TemporalBlend, HitDistanceToleranceWidensWithRoughness) {
+  const auto blended = [](float roughness, const ssrcl::TemporalSettings& s) {
+    std::vector<AnalyticFrame> frames;
+    for (int f = -2; f <= 2; ++f) frames.push_back(makeFrame(f, 0.2, f == 0 ? kCeiling : 1.4 * kCeiling, roughness));
+    return ssrcl::temporalBlend(window(frames), 2, s).data != frames[2].reflection.data;
+  };
+  EXPECT_TRUE(blended(0.3f, {}));
+  ssrcl::TemporalSettings noSpread;
+  noSpread.roughnessSpread = 0.0f;
+  EXPECT_FALSE(blended(0.3f, noSpread));
+  EXPECT_FALSE(blended(0.05f, {}));
 }
 
 TEST(TemporalBlend, MirrorPixelsKeepTheirOwnPass) {
@@ -125,6 +143,9 @@ TEST(TemporalBlend, RejectsFramesOfAnotherSize) {
   EXPECT_THROW(ssrcl::temporalBlend(window(frames), 0, {}), ssrcl::Error);
   ssrcl::TemporalSettings bad;
   bad.distanceTolerance = 0.0f;
+  EXPECT_THROW(ssrcl::temporalBlend(window(frames), 0, bad), ssrcl::Error);
+  bad = {};
+  bad.roughnessSpread = -1.0f;
   EXPECT_THROW(ssrcl::temporalBlend(window(frames), 0, bad), ssrcl::Error);
 }
 

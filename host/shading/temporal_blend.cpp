@@ -59,6 +59,7 @@ void validateTemporalSettings(const TemporalSettings& s) {
   check(s.maxNormalDegrees > 0.0f && s.maxNormalDegrees <= 180.0f, "maxNormalDegrees");
   check(s.distanceTolerance > 0.0f && s.distanceTolerance < 1.0f, "distanceTolerance");
   check(s.movedTolerance > 0.0f && s.movedTolerance < 1.0f, "movedTolerance");
+  check(s.roughnessSpread >= 0.0f && s.roughnessSpread <= 10.0f, "roughnessSpread");
   check(s.mirrorRoughness >= 0.0f && s.mirrorRoughness <= 1.0f, "mirrorRoughness");
   check(!s.constantRoughness || (*s.constantRoughness >= 0.0f && *s.constantRoughness <= 1.0f), "constantRoughness");
 }
@@ -102,6 +103,7 @@ Image temporalBlend(const std::vector<TemporalFrame>& frames, size_t centre, con
         const glm::dvec3 reflected = p + view * (miss ? kMissDistance : dist);
         // The hit itself, along the mirror direction of the pixel's normal (the lobe's centre).
         const glm::dvec3 hit = p + glm::reflect(view, n) * dist;
+        const double spread = double(s.roughnessSpread) * roughness;  // of the hit distance
         double sum[4] = {0, 0, 0, 0}, weight = 0;
         for (size_t j = 0; j < frames.size(); ++j) {
           if (j == centre) continue;
@@ -113,7 +115,7 @@ Image temporalBlend(const std::vector<TemporalFrame>& frames, size_t centre, con
             const int hx = int(std::floor(hs.x)), hy = int(std::floor(hs.y));
             if (hs.z > 0.0 && hx >= 0 && hy >= 0 && hx < w && hy < h) {
               const float shown = frames[j].depth->at(hx, hy, 0);
-              if (detail::isSurfaceDepth(shown) && hs.z < shown * (1.0 - s.movedTolerance)) continue;
+              if (detail::isSurfaceDepth(shown) && hs.z < shown * (1.0 - s.movedTolerance) - spread * dist) continue;
             }
           }
           // Bilinear over the four pixel centres around q, each tap tested on its own.
@@ -133,7 +135,7 @@ Image temporalBlend(const std::vector<TemporalFrame>& frames, size_t centre, con
             if (miss != !(ds > 0.0)) continue;
             if (!miss) {  // its hit distance against the distance from it to the reflected point
               const double expected = glm::length(reflected - ps);
-              const double e = std::abs(ds - expected) / (s.distanceTolerance * expected);
+              const double e = std::abs(ds - expected) / ((s.distanceTolerance + spread) * expected);
               if (e >= 1.0) continue;
               match = (1.0 - e) * (1.0 - e);
             }

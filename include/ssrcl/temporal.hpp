@@ -10,7 +10,9 @@
 // pixels around it is taken when it lies on the frame pixel's tangent plane, its normal is within
 // maxNormalDegrees, and its own hit distance matches the distance from it to the reflected point;
 // and refused when the frame's hit, seen from the neighbour, is in front of what the neighbour
-// shows there (the object has moved). Weights fall with the hit-distance mismatch.
+// shows there (the object has moved). Weights fall with the hit-distance mismatch. Both tests
+// widen with roughness: a rough lobe's hit distance is a mean over hits spread across the lobe,
+// which moves with the view, and its hit (taken along the lobe's centre) need not lie on a surface.
 #include <optional>
 #include <vector>
 
@@ -34,6 +36,10 @@ struct TemporalSettings {
   float maxNormalDegrees = 45.0f;          // normals further apart: refused
   float distanceTolerance = 0.2f;          // hit distance off by more than this share: refused
   float movedTolerance = 0.02f;            // the hit this share of depth in front of the neighbour's surface: moved
+  // Both tests widen by this times roughness times the hit distance: measured on Cycles shots
+  // (docs/BENCHMARKS.md "Shots"), a rough floor's hit distance is off by more than 20% between
+  // views for most of its pixels, and its hit lies in front of the surface the neighbour shows.
+  float roughnessSpread = 2.0f;
   float mirrorRoughness = 0.02f;           // pixels at or below keep their own pass (sharp, no noise)
   std::optional<float> constantRoughness;  // every pixel's roughness where frames have no image
 };
