@@ -1,10 +1,12 @@
 // ssrcl command-line tool: a thin client of the library.
 #include <iostream>
+#include <thread>
 
 #include "commands.hpp"
 #include "exit_codes.hpp"
 #include "ssrcl/version.hpp"
 #include "ssrcl/error.hpp"
+#include "ssrcl/io.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"ssrcl: screen-space reflections for rendered EXR passes (OpenCL)", "ssrcl"};
@@ -17,6 +19,9 @@ int main(int argc, char** argv) {
     ssrcl::cli::Action action = add(app);
     commands.emplace_back(app.get_subcommands({})[before], std::move(action));
   }
+  // The CLI owns its process: EXR chunks are (de)compressed on every core (a trace reads and
+  // writes while the device is idle).
+  ssrcl::setExrThreads(int(std::thread::hardware_concurrency()));
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -11,6 +11,7 @@
 
 #include "device_impl.hpp"
 #include "embedded_kernels.hpp"
+#include "program_cache.hpp"
 
 namespace ssrcl {
 namespace detail {
@@ -204,6 +205,8 @@ const cl::Program& Device::Impl::program(const std::vector<std::string>& sources
   if (auto it = programs_.find(key); it != programs_.end()) return it->second;
   std::string source;
   for (const std::string& name : sources) source += std::string("#line 1 \"") + name + "\"\n" + detail::embeddedKernel(name) + "\n";
+  if (cl::Program cached = detail::cachedProgram(context, device, source, options); cached())
+    return programs_.emplace(key, std::move(cached)).first->second;
   cl::Program program;
   try {
     program = cl::Program(context, source);
@@ -225,6 +228,7 @@ const cl::Program& Device::Impl::program(const std::vector<std::string>& sources
                     " (options: " + options + ")",
                 log);
   }
+  detail::storeProgram(program, device, source, options);
   return programs_.emplace(key, std::move(program)).first->second;
 }
 
