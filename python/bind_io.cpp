@@ -135,6 +135,10 @@ void bindIo(py::module_& m) {
         "with the pass added; headerFrom: an EXR whose pixel aspect, screen window and chromaticities are carried "
         "over; windows and camera written into the header; string attributes.");
   m.def("exrCompressionNames", &exrCompressionNames);
+  m.def("setExrThreads", &setExrThreads, py::arg("count"),
+        "Threads OpenEXR (de)compresses every EXR with, process-wide (0, the default: the calling thread); the "
+        "files are the same bytes whatever the count. A script that owns its process sets its core count, as the "
+        "CLI does; one inside a host application leaves the host's setting alone.");
 }
 
 }  // namespace ssrcl::python

@@ -190,13 +190,13 @@ void fitClipPlanes(Camera& camera, const Image& planarDepth);
 // `planarDepth` lies nearer than the near plane or beyond the far plane.
 void checkClipPlanes(const Camera& camera, const Image& planarDepth, const std::string& cameraName);
 
-// Camera sidecar: {"view": 4x4 row-major world->camera, "projection": 4x4 row-major OpenGL clip,
-// "width": W, "height": H, optional "near", "far"}. Validated; errors name the file and field.
 // How many threads OpenEXR (de)compresses every EXR file with, in this whole process: 0 (the
 // default) on the calling thread only. Chunks are independent, so files are the same bytes
 // whatever the count; a program that owns its process sets its core count.
 void setExrThreads(int count);
 
+// Camera sidecar: {"view": 4x4 row-major world->camera, "projection": 4x4 row-major OpenGL clip,
+// "width": W, "height": H, optional "near", "far"}. Validated; errors name the file and field.
 Camera loadCameraJson(const std::string& path);
 void saveCameraJson(const std::string& path, const Camera& camera);
 

@@ -145,6 +145,21 @@ class CliEquivalenceTest(unittest.TestCase):
             self.assertTrue(filecmp.cmp(py_out, cli_out, shallow=False))
 
 
+    def test_threaded_exr_write_is_the_same_bytes(self):
+        # Smooth, so ZIP shrinks every 16-line chunk (a chunk it cannot shrink is stored raw).
+        y, x = np.mgrid[0:67, 0:45].astype(np.float32)
+        rgba = np.stack([x / 45, y / 67, (x + y) / 112, np.ones_like(x)], axis=-1)
+        distance = rgba[..., :1] * 10
+        with tempfile.TemporaryDirectory() as tmp:
+            paths = []
+            for threads in (4, 0):
+                ssrcl.setExrThreads(threads)
+                paths.append(os.path.join(tmp, f"t{threads}.exr"))
+                ssrcl.writeReflectionExr(paths[-1], rgba, distance, compression="zip")
+            self.assertTrue(filecmp.cmp(paths[0], paths[1], shallow=False))
+            np.testing.assert_array_equal(exr_channels(minexr.ExrFile(paths[0]), ["R", "G", "B", "A"]), rgba)
+
+
 def cli_pass(tmp, args):
     """RGBA of `ssrcl trace` run with `args` (input and options)."""
     out = os.path.join(tmp, "cli.exr")
