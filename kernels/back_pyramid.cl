@@ -56,4 +56,3 @@ __kernel void range_reduce(__global float2* pyramid, __global const HzbLevel* le
   pyramid[c.dst.offset + y * c.dst.width + x] =
       (float2)(fmin(fmin(a.x, b.x), fmin(d.x, e.x)), fmax(fmax(a.y, b.y), fmax(d.y, e.y)));
 }
-

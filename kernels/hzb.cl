@@ -7,5 +7,6 @@ __kernel void depth_reduce(__global float* pyramid, __global const HzbLevel* lev
   ReduceCell c;
   if (!reduce_cell(levels, dst_level, x, y, &c)) return;
   int4 i = cell_texel_indices(&c);
-  pyramid[c.dst.offset + y * c.dst.width + x] = fmin(fmin(pyramid[i.x], pyramid[i.y]), fmin(pyramid[i.z], pyramid[i.w]));
+  pyramid[c.dst.offset + y * c.dst.width + x] =
+      fmin(fmin(pyramid[i.x], pyramid[i.y]), fmin(pyramid[i.z], pyramid[i.w]));
 }

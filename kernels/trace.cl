@@ -132,7 +132,8 @@ inline float hit_pixel(TraceScene* sc, const ScreenRay* ray, float3 dir, int2 ce
 inline bool behind_back(TraceScene* sc, const ScreenRay* ray, float t0, float t1, int mip, int2 cell) {
   if (!SSRCL_BACK_SKIP) return false;
   ++sc->fetches;
-  return fmin(ray_depth(ray, fmin(t0, 1.0f)), ray_depth(ray, fmin(t1, 1.0f))) > sc->range[pyramid_index(sc->levels, mip, cell)].y;
+  return fmin(ray_depth(ray, fmin(t0, 1.0f)), ray_depth(ray, fmin(t1, 1.0f))) >
+         sc->range[pyramid_index(sc->levels, mip, cell)].y;
 }
 
 // Hierarchical traversal (FidelityFX SSSR style): climb while the ray stays in front of a cell's
@@ -330,8 +331,9 @@ inline void trace_hiz_lanes(TraceScene* sc, const ScreenRay* rays, const float3*
       // offset (the records' first field) by one gather.
       int8 width = ((int8)(sc->size.x) + ((int8)(1) << mip) - 1) >> mip;
       int8 height = ((int8)(sc->size.y) + ((int8)(1) << mip) - 1) >> mip;
-      int8 texel = as_int8(gather8((__global const float*)sc->levels, mip * 4)) + clamp(cy, 0, height - 1) * width +
-                   clamp(cx, 0, width - 1);
+      const int record = sizeof(HzbLevel) / sizeof(int);
+      int8 texel = as_int8(gather8((__global const float*)sc->levels, mip * record)) +
+                   clamp(cy, 0, height - 1) * width + clamp(cx, 0, width - 1);
       // The range pyramid holds the HZB's depth beside the farthest hit: one record a texel.
       if (back_skip) {
         d_min = gather8_xy(sc->range, texel, &d_back);
@@ -591,7 +593,8 @@ __kernel void trace_rays(TraceParams params, __global const float* hzb, __global
     int2 lane_cell[SSRCL_TRACE_LANES];
     for (int k = 0; k < SSRCL_TRACE_LANES; ++k) {
       const ScreenRay none = {(float2)(0.0f), (float2)(0.0f), (float4)(0.0f), (float4)(0.0f)};
-      const TraceScene sc = {size, hzb, levels, level_count, planes, normals, params.max_iterations, 0, 0, 0, 0, 0, range};
+      const TraceScene sc = {size, hzb, levels, level_count, planes, normals, params.max_iterations, 0, 0, 0, 0, 0,
+                             range};
       scene[k] = sc;  // every lane's: trace_hiz_lanes reads the frame from scene[0]
       lane[k].traced = lane_live[k] = 0;
       lane_ray[k] = none;  // lanes without a ray are traced too, their results unused

@@ -9,8 +9,9 @@ const StageAccess BackPyramidStage::access{
 
 void BackPyramidStage::configure(Device::Impl& device, bool used) {
   used_ = used;
-  level0_ = cl::Kernel(device.program({"ssrcl_shared.h", "common.cl", "back_pyramid.cl"}), "back_level0");
-  reduce_ = cl::Kernel(device.program({"ssrcl_shared.h", "common.cl", "back_pyramid.cl"}), "range_reduce");
+  const cl::Program& program = device.program({"ssrcl_shared.h", "common.cl", "back_pyramid.cl"});
+  level0_ = cl::Kernel(program, "back_level0");
+  reduce_ = cl::Kernel(program, "range_reduce");
 }
 
 void BackPyramidStage::plan(FrameResources& resources, DeviceBuffers& buffers, const FrameShape& frame) {
