@@ -50,8 +50,9 @@ typedef uint ssrcl_uint;
 // 1 inclusive. Square roots put the nodes where E bends: smooth lobes and grazing angles.
 #define SSRCL_ALBEDO_STEPS 32
 
-// Rays a trace_rays work-item traces together, one per float8 lane (kernels/trace.cl).
-#define SSRCL_TRACE_LANES 8
+// Listed pixels a trace_rays work-item takes (kernels/trace.cl): its rays are traced in rounds of
+// up to this many, in packets of eight float8 lanes.
+#define SSRCL_TRACE_PIXELS 16
 
 // One level of the HZB and colour pyramids: offset into the packed mip buffer and its size.
 typedef struct {

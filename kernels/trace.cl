@@ -13,6 +13,10 @@
 // back pyramid, back_pyramid.cl). Not with views: a ray's passage behind surfaces is recorded there
 // pixel by pixel (SSRCL_RAY_BEHIND).
 #define SSRCL_BACK_SKIP (!SSRCL_VIEWS)
+#ifndef SSRCL_TRACE_PACKETS
+#define SSRCL_TRACE_PACKETS 2  // packets of eight rays a round (trace_hiz_packets)
+#endif
+#define SSRCL_TRACE_ROUND (8 * SSRCL_TRACE_PACKETS)
 #ifndef SSRCL_MATERIAL_HITS
 #define SSRCL_MATERIAL_HITS 0  // 1: hits on glossy pixels are shaded with their F0 (f0, albedo)
 #endif
@@ -184,7 +188,7 @@ inline float trace_hiz(TraceScene* sc, const ScreenRay* ray, float3 dir, int2* h
   return -1.0f;
 }
 
-// trace_hiz for SSRCL_TRACE_LANES (8) rays at once, one per float8 lane. PoCL runs each
+// trace_hiz for eight rays at once, one per float8 lane. PoCL runs each
 // work-item's loop as scalar code (its loop exits per ray, so its vectoriser cannot run it across
 // work-items); lanes bring the vector units in by hand. Each lane evaluates trace_hiz's and
 // hit_pixel's expressions in the same form and order, so it rounds as the scalar code does and
@@ -273,107 +277,122 @@ inline float8 hit_pixel8(const TraceScene* sc, const ScreenRays8* r, float8 dx, 
   return select(t_hit, t_in + (t_out - t_in) * (g_in / (g_in - g_out)), crossing);
 }
 
-// Traces the rays of the lanes marked in live[] (others are left alone): t_hit[k] is the hit's t or
-// -1, hit_cell[k] the pixel hit, and sc[k] counts the lane's work and its views flags.
-inline void trace_hiz_lanes(TraceScene* sc, const ScreenRay* rays, const float3* dirs, const int* live,
-                            float* t_hit_out, int2* hit_cell) {
+// A packet: eight rays in float8 lanes and where each stands.
+typedef struct {
+  ScreenRays8 r;
+  float8 dx, dy, dz, nudge, t, t_hit;
+  int8 deeper, mip, cx, cy, hit_x, hit_y, active, iterations, fetches, seen, behind, thick;
+} Packet8;
+
+// Starts the rays of the lanes marked in live[] (the others' lanes stay idle).
+inline void packet_begin(Packet8* p, const TraceScene* sc, const ScreenRay* rays, const float3* dirs, const int* live) {
   // ScreenRay is 12 floats (s0, ds, q0, dq; the float4s 16-byte aligned), a float3 4.
   const float* rf = (const float*)rays;
   const int rs = sizeof(ScreenRay) / sizeof(float), ds = sizeof(float3) / sizeof(float);
-  const ScreenRays8 r = {lanes_of(rf, rs), lanes_of(rf + 1, rs), lanes_of(rf + 2, rs), lanes_of(rf + 3, rs),
-                         lanes_of(rf + 4, rs), lanes_of(rf + 5, rs), lanes_of(rf + 6, rs), lanes_of(rf + 7, rs),
+  const ScreenRays8 r = {lanes_of(rf, rs),     lanes_of(rf + 1, rs), lanes_of(rf + 2, rs),  lanes_of(rf + 3, rs),
+                         lanes_of(rf + 4, rs), lanes_of(rf + 5, rs), lanes_of(rf + 6, rs),  lanes_of(rf + 7, rs),
                          lanes_of(rf + 8, rs), lanes_of(rf + 9, rs), lanes_of(rf + 10, rs), lanes_of(rf + 11, rs)};
+  p->r = r;
   const float* df = (const float*)dirs;
-  const float8 dx = lanes_of(df, ds), dy = lanes_of(df + 1, ds), dz = lanes_of(df + 2, ds);
+  p->dx = lanes_of(df, ds);
+  p->dy = lanes_of(df + 1, ds);
+  p->dz = lanes_of(df + 2, ds);
   int lane_iterations[8], lane_seen[8];
   for (int k = 0; k < 8; ++k) {
     lane_iterations[k] = sc[k].iterations;
     lane_seen[k] = sc[k].seen;
   }
-  int8 iterations = vload8(0, lane_iterations), fetches = 0;
-  int8 seen = vload8(0, lane_seen) != 0, behind = 0, thick = 0;
+  p->iterations = vload8(0, lane_iterations);
+  p->fetches = 0;
+  p->seen = vload8(0, lane_seen) != 0;
+  p->behind = p->thick = 0;
+  p->nudge = 0.01f / fmax(fabs(r.dsx), fabs(r.dsy));
+  p->deeper = r.q0z * r.dqw - r.dqz * r.q0w > 0.0f;
+  p->t = cell_exit8(&p->r, (float8)(0.0f), p->nudge, (float8)(1.0f), &p->cx, &p->cy);
+  p->mip = p->hit_x = p->hit_y = 0;
+  p->t_hit = -1.0f;
+  p->active = vload8(0, live) != 0;
+}
+
+// One step of the packet's live lanes; false once none is left.
+inline bool packet_step(Packet8* p, const TraceScene* sc) {
   const int top = sc->level_count - 1;
   const bool back_skip = SSRCL_BACK_SKIP;
-
-  float8 nudge = 0.01f / fmax(fabs(r.dsx), fabs(r.dsy));
-  int8 deeper = r.q0z * r.dqw - r.dqz * r.q0w > 0.0f;
-  int8 cx, cy;
-  float8 t = cell_exit8(&r, (float8)(0.0f), nudge, (float8)(1.0f), &cx, &cy);
-  int8 mip = 0, hit_x = 0, hit_y = 0;
-  float8 t_hit = -1.0f;
-  int8 active = vload8(0, live) != 0;
-  for (;;) {
-    active &= (iterations < sc->max_iterations) & (t <= 1.0f);
-    if (!any(active)) break;
-    float8 t_exit = cell_exit8(&r, t, nudge, convert_float8((int8)(1) << mip), &cx, &cy);
-    int8 fine = active & (mip == 0);
-    // Each side's texels are read only where a lane needs them.
-    int8 in_front = 0, hit = 0;
-    if (any(fine)) {
-      float8 t_pixel = hit_pixel8(sc, &r, dx, dy, dz, cx, cy, t, fmin(t_exit, 1.0f), fine, &in_front, &seen, &behind,
-                                  &thick);
-      hit = fine & (t_pixel >= 0.0f);
-      t_hit = select(t_hit, t_pixel, hit);
-      hit_x = select(hit_x, cx, hit);
-      hit_y = select(hit_y, cy, hit);
-    }
-    // The HZB's texel where a lane is coarse; the back pyramid's where it may skip or climb
-    // (behind_back's reads).
-    int8 coarse = active & ~fine;
-    float8 depth_t = -(r.q0z + t * r.dqz) / (r.q0w + t * r.dqw);
-    float8 t_end = fmin(t_exit, 1.0f);
-    float8 depth_exit = -(r.q0z + t_end * r.dqz) / (r.q0w + t_end * r.dqw);
-    float8 d_min = 0.0f, d_back = INFINITY;
-    int8 back_reads = 0;
-    const int8 climbing = back_skip ? fine & ~hit & ~in_front : 0;  // a fine lane's climb reads it
-    if (any(coarse | climbing)) {
-      // A level is ceil(fine / 2) of the one below (stage_support.cpp): its size by shifts, its
-      // offset (the records' first field) by one gather.
-      int8 width = ((int8)(sc->size.x) + ((int8)(1) << mip) - 1) >> mip;
-      int8 height = ((int8)(sc->size.y) + ((int8)(1) << mip) - 1) >> mip;
-      const int record = sizeof(HzbLevel) / sizeof(int);
-      int8 texel = as_int8(gather8((__global const float*)sc->levels, mip * record)) +
-                   clamp(cy, 0, height - 1) * width + clamp(cx, 0, width - 1);
-      // The range pyramid holds the HZB's depth beside the farthest hit: one record a texel.
-      if (back_skip) {
-        d_min = gather8_xy(sc->range, texel, &d_back);
-        back_reads = climbing;
-      } else if (any(coarse)) {
-        d_min = gather8(sc->hzb, texel);
-      }
-    }
-    int8 front = depth_t < d_min;
-    float8 denom = r.dqz + d_min * r.dqw;
-    float8 t_cross = -(r.q0z + d_min * r.q0w) / denom;
-    t_cross = select((float8)(INFINITY), t_cross, (denom != 0.0f) & isfinite(t_cross) & deeper &
-                                                      (d_min < SSRCL_NO_SURFACE));
-    int8 cross = front & (t_cross <= t_exit);
-
-    float8 t_next = select(select(t, t_exit, front), fmax(t, t_cross), cross);
-    int8 mip_next = select(mip - 1, min(mip + 1, top), front & ~cross);
-    int8 skip = coarse & (depth_t >= d_min) & (fmin(depth_t, depth_exit) > d_back);
-    t_next = select(t_next, t_exit, skip);
-    mip_next = select(mip_next, min(mip + 1, top), skip);
-    t_next = select(t_next, t_exit, fine);
-    mip_next = select(mip_next, select((int8)(0), (int8)(min(1, top)), in_front | (depth_exit > d_back)), fine);
-    fetches -= active;
-    fetches -= back_reads;
-    active &= ~hit;
-    t = select(t, t_next, active);
-    mip = select(mip, mip_next, active);
-    iterations -= active;
+  p->active &= (p->iterations < sc->max_iterations) & (p->t <= 1.0f);
+  if (!any(p->active)) return false;
+  float8 t_exit = cell_exit8(&p->r, p->t, p->nudge, convert_float8((int8)(1) << p->mip), &p->cx, &p->cy);
+  int8 fine = p->active & (p->mip == 0);
+  // Each side's texels are read only where a lane needs them.
+  int8 in_front = 0, hit = 0;
+  if (any(fine)) {
+    float8 t_pixel = hit_pixel8(sc, &p->r, p->dx, p->dy, p->dz, p->cx, p->cy, p->t, fmin(t_exit, 1.0f), fine, &in_front,
+                                &p->seen, &p->behind, &p->thick);
+    hit = fine & (t_pixel >= 0.0f);
+    p->t_hit = select(p->t_hit, t_pixel, hit);
+    p->hit_x = select(p->hit_x, p->cx, hit);
+    p->hit_y = select(p->hit_y, p->cy, hit);
   }
+  // The HZB's texel where a lane is coarse; the back pyramid's where it may skip or climb
+  // (behind_back's reads).
+  int8 coarse = p->active & ~fine;
+  float8 depth_t = -(p->r.q0z + p->t * p->r.dqz) / (p->r.q0w + p->t * p->r.dqw);
+  float8 t_end = fmin(t_exit, 1.0f);
+  float8 depth_exit = -(p->r.q0z + t_end * p->r.dqz) / (p->r.q0w + t_end * p->r.dqw);
+  float8 d_min = 0.0f, d_back = INFINITY;
+  int8 back_reads = 0;
+  const int8 climbing = back_skip ? fine & ~hit & ~in_front : 0;  // a fine lane's climb reads it
+  if (any(coarse | climbing)) {
+    // A level is ceil(fine / 2) of the one below (stage_support.cpp): its size by shifts, its
+    // offset (the records' first field) by one gather.
+    int8 width = ((int8)(sc->size.x) + ((int8)(1) << p->mip) - 1) >> p->mip;
+    int8 height = ((int8)(sc->size.y) + ((int8)(1) << p->mip) - 1) >> p->mip;
+    const int record = sizeof(HzbLevel) / sizeof(int);
+    int8 texel = as_int8(gather8((__global const float*)sc->levels, p->mip * record)) +
+                 clamp(p->cy, 0, height - 1) * width + clamp(p->cx, 0, width - 1);
+    // The range pyramid holds the HZB's depth beside the farthest hit: one record a texel.
+    if (back_skip) {
+      d_min = gather8_xy(sc->range, texel, &d_back);
+      back_reads = climbing;
+    } else if (any(coarse)) {
+      d_min = gather8(sc->hzb, texel);
+    }
+  }
+  int8 front = depth_t < d_min;
+  float8 denom = p->r.dqz + d_min * p->r.dqw;
+  float8 t_cross = -(p->r.q0z + d_min * p->r.q0w) / denom;
+  t_cross =
+      select((float8)(INFINITY), t_cross, (denom != 0.0f) & isfinite(t_cross) & p->deeper & (d_min < SSRCL_NO_SURFACE));
+  int8 cross = front & (t_cross <= t_exit);
 
+  float8 t_next = select(select(p->t, t_exit, front), fmax(p->t, t_cross), cross);
+  int8 mip_next = select(p->mip - 1, min(p->mip + 1, top), front & ~cross);
+  int8 skip = coarse & (depth_t >= d_min) & (fmin(depth_t, depth_exit) > d_back);
+  t_next = select(t_next, t_exit, skip);
+  mip_next = select(mip_next, min(p->mip + 1, top), skip);
+  t_next = select(t_next, t_exit, fine);
+  mip_next = select(mip_next, select((int8)(0), (int8)(min(1, top)), in_front | (depth_exit > d_back)), fine);
+  p->fetches -= p->active;
+  p->fetches -= back_reads;
+  p->active &= ~hit;
+  p->t = select(p->t, t_next, p->active);
+  p->mip = select(p->mip, mip_next, p->active);
+  p->iterations -= p->active;
+  return true;
+}
+
+// The packet's results: t_hit[k] the hit's t or -1, hit_cell[k] the pixel hit, and sc[k] counts
+// the lane's work and its views flags.
+inline void packet_end(const Packet8* p, TraceScene* sc, const int* live, float* t_hit_out, int2* hit_cell) {
   float t_lane[8];
-  int lane_x[8], lane_y[8], lane_fetches[8], lane_behind[8], lane_thick[8];
-  vstore8(t_hit, 0, t_lane);
-  vstore8(hit_x, 0, lane_x);
-  vstore8(hit_y, 0, lane_y);
-  vstore8(iterations, 0, lane_iterations);
-  vstore8(fetches, 0, lane_fetches);
-  vstore8(seen, 0, lane_seen);
-  vstore8(behind, 0, lane_behind);
-  vstore8(thick, 0, lane_thick);
+  int lane_x[8], lane_y[8], lane_iterations[8], lane_fetches[8], lane_seen[8], lane_behind[8], lane_thick[8];
+  vstore8(p->t_hit, 0, t_lane);
+  vstore8(p->hit_x, 0, lane_x);
+  vstore8(p->hit_y, 0, lane_y);
+  vstore8(p->iterations, 0, lane_iterations);
+  vstore8(p->fetches, 0, lane_fetches);
+  vstore8(p->seen, 0, lane_seen);
+  vstore8(p->behind, 0, lane_behind);
+  vstore8(p->thick, 0, lane_thick);
   for (int k = 0; k < 8; ++k) {
     if (!live[k]) continue;
     t_hit_out[k] = t_lane[k];
@@ -386,6 +405,21 @@ inline void trace_hiz_lanes(TraceScene* sc, const ScreenRay* rays, const float3*
     sc[k].thick |= lane_thick[k] != 0;
 #endif
   }
+}
+
+// Traces SSRCL_TRACE_PACKETS packets of eight rays, stepped in turn: one packet's step computes
+// while another's texel reads are under way (each step waits on the last one's reads).
+inline void trace_hiz_packets(TraceScene* sc, const ScreenRay* rays, const float3* dirs, const int* live,
+                              float* t_hit_out, int2* hit_cell) {
+  Packet8 packet[SSRCL_TRACE_PACKETS];
+  for (int k = 0; k < SSRCL_TRACE_PACKETS; ++k)
+    packet_begin(&packet[k], sc + 8 * k, rays + 8 * k, dirs + 8 * k, live + 8 * k);
+  for (bool stepped = true; stepped;) {
+    stepped = false;
+    for (int k = 0; k < SSRCL_TRACE_PACKETS; ++k) stepped |= packet_step(&packet[k], sc);
+  }
+  for (int k = 0; k < SSRCL_TRACE_PACKETS; ++k)
+    packet_end(&packet[k], sc + 8 * k, live + 8 * k, t_hit_out + 8 * k, hit_cell + 8 * k);
 }
 
 // Fixed steps of `step_pixels` along the major screen axis, each tested with hit_pixel against
@@ -578,30 +612,30 @@ __kernel void trace_rays(TraceParams params, __global const float* hzb, __global
   const float mirror_roughness = params.frame.mirror_roughness, edge_fade = params.edge_fade;
   const int batch_size = params.batch_size, level_count = params.level_count;
   const uint seed = params.seed;
-  // The rays of SSRCL_TRACE_LANES listed pixels per work-item, in rounds of up to SSRCL_TRACE_LANES:
+  // The rays of SSRCL_TRACE_PIXELS listed pixels per work-item, in rounds of up to SSRCL_TRACE_ROUND:
   // made one by one (skipping the slots a pixel has no ray in, so lanes stay full where pixels have
   // one ray, as mirror pixels do), traced together in lanes (Hi-Z), then shaded one by one.
-  const int end = min(((int)get_global_id(0) + 1) * SSRCL_TRACE_LANES, params.listed) * batch_size;
-  int next = (int)get_global_id(0) * SSRCL_TRACE_LANES * batch_size;
+  const int end = min(((int)get_global_id(0) + 1) * SSRCL_TRACE_PIXELS, params.listed) * batch_size;
+  int next = (int)get_global_id(0) * SSRCL_TRACE_PIXELS * batch_size;
   while (next < end) {
-    PixelRay lane[SSRCL_TRACE_LANES];
-    TraceScene scene[SSRCL_TRACE_LANES];
-    ScreenRay lane_ray[SSRCL_TRACE_LANES];
-    float3 lane_dir[SSRCL_TRACE_LANES];
-    int lane_live[SSRCL_TRACE_LANES];  // a screen ray to trace
-    float lane_t[SSRCL_TRACE_LANES];
-    int2 lane_cell[SSRCL_TRACE_LANES];
-    for (int k = 0; k < SSRCL_TRACE_LANES; ++k) {
+    PixelRay lane[SSRCL_TRACE_ROUND];
+    TraceScene scene[SSRCL_TRACE_ROUND];
+    ScreenRay lane_ray[SSRCL_TRACE_ROUND];
+    float3 lane_dir[SSRCL_TRACE_ROUND];
+    int lane_live[SSRCL_TRACE_ROUND];  // a screen ray to trace
+    float lane_t[SSRCL_TRACE_ROUND];
+    int2 lane_cell[SSRCL_TRACE_ROUND];
+    for (int k = 0; k < SSRCL_TRACE_ROUND; ++k) {
       const ScreenRay none = {(float2)(0.0f), (float2)(0.0f), (float4)(0.0f), (float4)(0.0f)};
       const TraceScene sc = {size, hzb, levels, level_count, planes, normals, params.max_iterations, 0, 0, 0, 0, 0,
                              range};
-      scene[k] = sc;  // every lane's: trace_hiz_lanes reads the frame from scene[0]
+      scene[k] = sc;  // every lane's: the packets read the frame from scene[0]
       lane[k].traced = lane_live[k] = 0;
       lane_ray[k] = none;  // lanes without a ray are traced too, their results unused
       lane_dir[k] = (float3)(0.0f);
       lane_t[k] = -1.0f;
     }
-    for (int k = 0; k < SSRCL_TRACE_LANES && next < end;) {
+    for (int k = 0; k < SSRCL_TRACE_ROUND && next < end;) {
       int gid = next++;
       int i = ray_list[gid / batch_size];
       int slot = gid % batch_size;
@@ -637,13 +671,13 @@ __kernel void trace_rays(TraceParams params, __global const float* hzb, __global
       ++k;
     }
 #if SSRCL_TRACER == SSRCL_TRACER_HIZ
-    trace_hiz_lanes(scene, lane_ray, lane_dir, lane_live, lane_t, lane_cell);
+    trace_hiz_packets(scene, lane_ray, lane_dir, lane_live, lane_t, lane_cell);
 #else
-    for (int k = 0; k < SSRCL_TRACE_LANES; ++k)
+    for (int k = 0; k < SSRCL_TRACE_ROUND; ++k)
       if (lane_live[k]) lane_t[k] = trace_ray(&scene[k], linear_step, &lane_ray[k], lane_dir[k], &lane_cell[k]);
 #endif
 
-    for (int k = 0; k < SSRCL_TRACE_LANES; ++k) {
+    for (int k = 0; k < SSRCL_TRACE_ROUND; ++k) {
       if (!lane[k].traced) continue;
       const int gid = lane[k].gid, sample = lane[k].sample;
       const size_t record = lane[k].record;

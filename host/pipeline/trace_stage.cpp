@@ -128,8 +128,8 @@ void TraceStage::upload(cl::CommandQueue& q, const float* base, const float* spe
 
 void TraceStage::enqueue(cl::CommandQueue& q, const TraceParams& params, StageEvents& events) {
   kernel_.setArg(0, params);
-  // A work-item per SSRCL_TRACE_LANES listed pixels (kernels/trace.cl).
-  const size_t items = (size_t(params.listed) + SSRCL_TRACE_LANES - 1) / SSRCL_TRACE_LANES;
+  // A work-item per SSRCL_TRACE_PIXELS listed pixels (kernels/trace.cl).
+  const size_t items = (size_t(params.listed) + SSRCL_TRACE_PIXELS - 1) / SSRCL_TRACE_PIXELS;
   q.enqueueNDRangeKernel(kernel_, cl::NullRange, cl::NDRange(roundUp(items, 64)), cl::NDRange(64), nullptr,
                          newEvent(events, "trace"));
 }
