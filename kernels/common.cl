@@ -145,6 +145,14 @@ inline float8 dot_lanes(float8 ax, float8 ay, float8 az, float8 bx, float8 by, f
   return (x + y) + z;
 }
 
+// any() of a lane mask (each lane 0 or -1) as one OR tree and one test: PoCL's any(int8) tests
+// the lanes' sign bits a pair at a time, a branch each.
+inline bool any_lane(int8 mask) {
+  int4 a = mask.lo | mask.hi;
+  int2 b = a.lo | a.hi;
+  return (b.x | b.y) != 0;
+}
+
 inline int max_lane(int8 v) {
   int4 m = max(v.lo, v.hi);
   return max(max(m.x, m.y), max(m.z, m.w));

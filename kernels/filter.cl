@@ -82,12 +82,12 @@ __kernel void denoise(FilterParams params, __global const int* tile_list, __glob
     for (int dx = -widest; dx <= widest; ++dx) {
       const int8 qx = x + dx, q = qy * size.x + clamp(qx, 0, size.x - 1);
       int8 take = lane_radius >= (int)max(abs(dx), abs(dy)) && qx >= 0 && qx < size.x;
-      if (!any(take)) continue;
+      if (!any_lane(take)) continue;
       const RecordLanes nq = record_lanes(normals, q);
       const int8 rays_q = (int8)(pixel_rays[q.s0], pixel_rays[q.s1], pixel_rays[q.s2], pixel_rays[q.s3],
                                  pixel_rays[q.s4], pixel_rays[q.s5], pixel_rays[q.s6], pixel_rays[q.s7]);
       take = take && rays_q != 0 && nq.w > mirror_roughness;
-      if (!any(take)) continue;
+      if (!any_lane(take)) continue;
       // The Gaussian, on the same plane, similar lobe width: one exp of their exponents' sum;
       // same orientation: cos^64 by six squarings (PoCL's exp and pow are library calls, which took
       // 86% of the filter's time: docs/BENCHMARKS.md "Resolve and filter").

@@ -215,17 +215,6 @@ inline float8 gather8_xy(__global const float2* a, int8 i, float8* y) {
   return (float8)(v0.x, v1.x, v2.x, v3.x, v4.x, v5.x, v6.x, v7.x);
 }
 
-// Eight float4 records as four float8s: one vector load a record, then shuffles (not a load per
-// float).
-inline float8 gather8_xyzw(__global const float4* a, int8 i, float8* y, float8* z, float8* w) {
-  float4 v0 = a[i.s0], v1 = a[i.s1], v2 = a[i.s2], v3 = a[i.s3], v4 = a[i.s4], v5 = a[i.s5], v6 = a[i.s6],
-         v7 = a[i.s7];
-  *y = (float8)(v0.y, v1.y, v2.y, v3.y, v4.y, v5.y, v6.y, v7.y);
-  *z = (float8)(v0.z, v1.z, v2.z, v3.z, v4.z, v5.z, v6.z, v7.z);
-  *w = (float8)(v0.w, v1.w, v2.w, v3.w, v4.w, v5.w, v6.w, v7.w);
-  return (float8)(v0.x, v1.x, v2.x, v3.x, v4.x, v5.x, v6.x, v7.x);
-}
-
 // cell_exit per lane.
 inline float8 cell_exit8(const ScreenRays8* r, float8 t, float8 nudge, float8 cell_size, int8* cx, int8* cy) {
   float8 ta = t + nudge;
@@ -261,8 +250,8 @@ inline float8 hit_pixel8(const TraceScene* sc, const ScreenRays8* r, float8 dx, 
                          int8 cy, float8 t_in, float8 t_out, int8 lanes, int8* in_front, int8* seen, int8* behind,
                          int8* thick) {
   int8 q = clamp(cy, 0, sc->size.y - 1) * sc->size.x + clamp(cx, 0, sc->size.x - 1);
-  float8 py, pz, pw;
-  float8 px = gather8_xyzw(sc->planes, q, &py, &pz, &pw);
+  const RecordLanes plane = record_lanes(sc->planes, q);
+  const float8 px = plane.x, py = plane.y, pz = plane.z, pw = plane.w;
   int8 sky = pw == -INFINITY;  // SSRCL_NO_PLANE
   float8 g_in = plane_side8(r, t_in, px, py, pz, pw), g_out = plane_side8(r, t_out, px, py, pz, pw);
   *in_front = sky | (g_out > 0.0f);
@@ -319,12 +308,12 @@ inline bool packet_step(Packet8* p, const TraceScene* sc) {
   const int top = sc->level_count - 1;
   const bool back_skip = SSRCL_BACK_SKIP;
   p->active &= (p->iterations < sc->max_iterations) & (p->t <= 1.0f);
-  if (!any(p->active)) return false;
+  if (!any_lane(p->active)) return false;
   float8 t_exit = cell_exit8(&p->r, p->t, p->nudge, convert_float8((int8)(1) << p->mip), &p->cx, &p->cy);
   int8 fine = p->active & (p->mip == 0);
   // Each side's texels are read only where a lane needs them.
   int8 in_front = 0, hit = 0;
-  if (any(fine)) {
+  if (any_lane(fine)) {
     float8 t_pixel = hit_pixel8(sc, &p->r, p->dx, p->dy, p->dz, p->cx, p->cy, p->t, fmin(t_exit, 1.0f), fine, &in_front,
                                 &p->seen, &p->behind, &p->thick);
     hit = fine & (t_pixel >= 0.0f);
@@ -341,7 +330,7 @@ inline bool packet_step(Packet8* p, const TraceScene* sc) {
   float8 d_min = 0.0f, d_back = INFINITY;
   int8 back_reads = 0;
   const int8 climbing = back_skip ? fine & ~hit & ~in_front : 0;  // a fine lane's climb reads it
-  if (any(coarse | climbing)) {
+  if (any_lane(coarse | climbing)) {
     // A level is ceil(fine / 2) of the one below (stage_support.cpp): its size by shifts, its
     // offset (the records' first field) by one gather.
     int8 width = ((int8)(sc->size.x) + ((int8)(1) << p->mip) - 1) >> p->mip;
@@ -353,7 +342,7 @@ inline bool packet_step(Packet8* p, const TraceScene* sc) {
     if (back_skip) {
       d_min = gather8_xy(sc->range, texel, &d_back);
       back_reads = climbing;
-    } else if (any(coarse)) {
+    } else if (any_lane(coarse)) {
       d_min = gather8(sc->hzb, texel);
     }
   }
