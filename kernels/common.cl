@@ -123,7 +123,13 @@ inline int2 tile_pixel(__global const int* tile_list, int tiles_x) {
 #define SSRCL_LANES(a, field) \
   (float8)(a[0].field, a[1].field, a[2].field, a[3].field, a[4].field, a[5].field, a[6].field, a[7].field)
 
-// Record slot.sN of each lane N, transposed: one float8 per component.
+// a[i.sN] in lane N. LLVM makes one hardware gather (vgatherdps) of it.
+inline float8 gather8(__global const float* a, int8 i) {
+  return (float8)(a[i.s0], a[i.s1], a[i.s2], a[i.s3], a[i.s4], a[i.s5], a[i.s6], a[i.s7]);
+}
+
+// Record slot.sN of each lane N, transposed: one float8 per component. Eight record loads and a
+// transpose, for lanes whose records lie side by side (neighbouring pixels).
 typedef struct {
   float8 x, y, z, w;
 } RecordLanes;
@@ -133,6 +139,16 @@ inline RecordLanes record_lanes(__global const float4* records, int8 slot) {
   float16 b = (float16)(records[slot.s4], records[slot.s5], records[slot.s6], records[slot.s7]).s048c159d26ae37bf;
   RecordLanes r = {(float8)(a.s0123, b.s0123), (float8)(a.s4567, b.s4567), (float8)(a.s89ab, b.s89ab),
                    (float8)(a.scdef, b.scdef)};
+  return r;
+}
+
+// The same for lanes whose records lie apart (the trace's rays): a hardware gather a component.
+// There eight loads' addresses leave the vector registers a pair at a time (the trace's CPU -8%);
+// on neighbouring records the gathers are slower (the resolve 1.15x, the filter 1.5x).
+inline RecordLanes scattered_record_lanes(__global const float4* records, int8 slot) {
+  __global const float* f = (__global const float*)records;
+  const int8 i = 4 * slot;
+  RecordLanes r = {gather8(f, i), gather8(f, i + 1), gather8(f, i + 2), gather8(f, i + 3)};
   return r;
 }
 

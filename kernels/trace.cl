@@ -203,16 +203,11 @@ inline float8 lanes_of(const float* a, int stride) {
                   a[7 * stride]);
 }
 
-inline float8 gather8(__global const float* a, int8 i) {
-  return (float8)(a[i.s0], a[i.s1], a[i.s2], a[i.s3], a[i.s4], a[i.s5], a[i.s6], a[i.s7]);
-}
-
-// Eight float2 records as two float8s.
+// Eight float2 records as two float8s, a gather each (scattered_record_lanes).
 inline float8 gather8_xy(__global const float2* a, int8 i, float8* y) {
-  float2 v0 = a[i.s0], v1 = a[i.s1], v2 = a[i.s2], v3 = a[i.s3], v4 = a[i.s4], v5 = a[i.s5], v6 = a[i.s6],
-         v7 = a[i.s7];
-  *y = (float8)(v0.y, v1.y, v2.y, v3.y, v4.y, v5.y, v6.y, v7.y);
-  return (float8)(v0.x, v1.x, v2.x, v3.x, v4.x, v5.x, v6.x, v7.x);
+  __global const float* f = (__global const float*)a;
+  *y = gather8(f, 2 * i + 1);
+  return gather8(f, 2 * i);
 }
 
 // cell_exit per lane.
@@ -250,7 +245,7 @@ inline float8 hit_pixel8(const TraceScene* sc, const ScreenRays8* r, float8 dx, 
                          int8 cy, float8 t_in, float8 t_out, int8 lanes, int8* in_front, int8* seen, int8* behind,
                          int8* thick) {
   int8 q = clamp(cy, 0, sc->size.y - 1) * sc->size.x + clamp(cx, 0, sc->size.x - 1);
-  const RecordLanes plane = record_lanes(sc->planes, q);
+  const RecordLanes plane = scattered_record_lanes(sc->planes, q);
   const float8 px = plane.x, py = plane.y, pz = plane.z, pw = plane.w;
   int8 sky = pw == -INFINITY;  // SSRCL_NO_PLANE
   float8 g_in = plane_side8(r, t_in, px, py, pz, pw), g_out = plane_side8(r, t_out, px, py, pz, pw);
