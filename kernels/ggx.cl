@@ -46,8 +46,12 @@ inline float3 ggx_sample_vndf(float3 o, float alpha, float2 u) {
   float3 t2 = cross(vh, t1);
   float r = sqrt(u.x);
   float phi = 2.0f * SSRCL_PI * u.y;
-  float p1 = r * cos(phi);
-  float p2 = r * sin(phi);
+  // One argument reduction for both (PoCL's sincos equals its cos and sin bit for bit on every phi
+  // this can take, 2 pi k / 2^24, at about half their cost).
+  float cos_phi;
+  float sin_phi = sincos(phi, &cos_phi);
+  float p1 = r * cos_phi;
+  float p2 = r * sin_phi;
   float s = 0.5f * (1.0f + vh.z);
   p2 = (1.0f - s) * sqrt(fmax(1.0f - p1 * p1, 0.0f)) + s * p2;
   float3 nh = p1 * t1 + p2 * t2 + sqrt(fmax(1.0f - p1 * p1 - p2 * p2, 0.0f)) * vh;
