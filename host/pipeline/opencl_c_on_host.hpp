@@ -17,13 +17,15 @@ using uint = unsigned int;
 using glm::cross;
 using glm::dot;
 using glm::length;
-using std::cos;
 using std::floor;
 using std::fmax;
-using std::sin;
 using std::sqrt;
 inline float rsqrt(float x) { return 1.0f / std::sqrt(x); }
 inline float2 floor(float2 v) { return glm::floor(v); }
+inline float sincos(float x, float* cos_x) {
+  *cos_x = std::cos(x);
+  return std::sin(x);
+}
 // As OpenCL C's: a zero vector stays zero (glm's would be NaN).
 inline float3 normalize(float3 v) {
   const float l = glm::length(v);
