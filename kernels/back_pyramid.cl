@@ -23,13 +23,16 @@ inline float slab_far_end(float16 inv_proj, int2 size, float2 corner, float3 n, 
   return fmax((c - from) / along, (c - 1.0f - from) / along) - origin.z;  // planar depth (view_line)
 }
 
+// With `guessed`, a pixel whose back is known also catches rays within the thickness model's guess
+// (`guess`, in units of its exact thickness, trace.cl SSRCL_BACK_KNOWN): its slab is the larger one.
 __kernel void back_level0(FrameConstants frame, __global const float* hzb, __global const float4* planes,
-                          __global float2* range) {
+                          __global const float* guess, int guessed, __global float2* range) {
   const int2 size = (int2)(frame.width, frame.height);
   int x = get_global_id(0), y = get_global_id(1);
   if (x >= size.x || y >= size.y) return;
   const float16 inv_proj = vload16(0, frame.inv_proj);
   float4 plane = planes[y * size.x + x];
+  if (guessed) plane /= fmax(guess[y * size.x + x], 1.0f);  // records are over the thickness
   float far_end = -INFINITY;  // SSRCL_NO_PLANE: nothing to hit
   if (plane.w != -INFINITY) {
     int sign = 0;

@@ -88,14 +88,20 @@ __kernel void surface_thickness(ThicknessParams params, __global const float4* p
 // q = p + (back - d) s, s the line's step per unit of planar depth (p / d through the eye, -z
 // orthographic), which lies (back - d) |s.n| behind the plane along its normal. That replaces the
 // model's thickness (adaptive or constant) in the plane record; the plane's normal is its direction.
+// `guess` keeps the model's thickness in units of the exact one there, 0 elsewhere: where the
+// exact interval leaves a ray with nothing, the trace falls back on it (trace.cl SSRCL_BACK_KNOWN).
 __kernel void known_thickness(ThicknessParams params, __global const float4* positions,
-                              __global const float* back, __global float4* planes) {
+                              __global const float* back, __global float4* planes, __global float* guess) {
   int i = get_global_id(0);
   if (i >= params.frame.width * params.frame.height) return;
   float4 position = positions[i], plane = planes[i];
   float b = back[i], d = position.w;
+  guess[i] = 0.0f;
   if (!(b > 0.0f) || d >= SSRCL_NO_SURFACE || plane.w == -INFINITY) return;  // SSRCL_NO_PLANE
   float3 n = normalize(plane.xyz);
   float3 s = params.orthographic ? (float3)(0.0f, 0.0f, -1.0f) : position.xyz / d;
-  planes[i] = surface_plane(position.xyz, n, (b - d) * fabs(dot(s, n)));
+  float4 exact = surface_plane(position.xyz, n, (b - d) * fabs(dot(s, n)));
+  planes[i] = exact;
+  // The records are (n, dot(p, n)) / thickness: the ratio of their normals' lengths.
+  guess[i] = length(exact.xyz) / length(plane.xyz);
 }

@@ -9,6 +9,14 @@
 #ifndef SSRCL_VIEWS
 #define SSRCL_VIEWS 0  // 1: auxiliary views follow (kernels/view_trace.cl); ray states are written
 #endif
+// With a back-face depth pass (1): a ray that passes behind a surface whose back the pass gives,
+// beyond that back but within the thickness the model guessed there (thickness.cl known_thickness),
+// and then finds nothing, takes that surface as the guess would have: in the renderer it meets
+// what is hidden behind the surface, which the screen does not hold, and the surface's colour is
+// nearer that than nothing. The exact interval decides first; the guess only fills its misses.
+#ifndef SSRCL_BACK_KNOWN
+#define SSRCL_BACK_KNOWN 0
+#endif
 // The Hi-Z trace skips cells the ray crosses wholly behind every hit a pixel there allows (the
 // back pyramid, back_pyramid.cl). Not with views: a ray's passage behind surfaces is recorded there
 // pixel by pixel (SSRCL_RAY_BEHIND).
@@ -87,6 +95,11 @@ typedef struct {
   // until it comes into view); its hit was found within a surface's thickness.
   int seen, behind, thick;
   __global const float2* range;  // the range pyramid (SSRCL_BACK_SKIP, back_pyramid.cl): y = farthest hit
+  __global const float* guess;   // SSRCL_BACK_KNOWN: the model's thickness in exact ones (0: back unknown)
+  // SSRCL_BACK_KNOWN: the first surface the ray passed behind within its guess (past), where.
+  int past;
+  float past_t;
+  int2 past_cell;
 } TraceScene;
 
 // The ray's signed distance to a pixel's plane (n, dot(p, n)) / thickness, in thicknesses, times
@@ -127,6 +140,13 @@ inline float hit_pixel(TraceScene* sc, const ScreenRay* ray, float3 dir, int2 ce
 #if SSRCL_VIEWS
   if (*in_front) sc->seen = 1;
   else if (sc->seen) sc->behind = 1;
+#endif
+#if SSRCL_BACK_KNOWN
+  if (!*in_front && !sc->past && -g_in <= sc->guess[cell.y * sc->size.x + cell.x] * ray_q(ray, t_in).w) {
+    sc->past = 1;
+    sc->past_t = t_in;
+    sc->past_cell = cell;
+  }
 #endif
   return -1.0f;
 }
@@ -243,7 +263,7 @@ inline float8 plane_side8(const ScreenRays8* r, float8 t, float8 px, float8 py, 
 // hit_pixel per lane, for the lanes in `lanes` (the others' results are not used).
 inline float8 hit_pixel8(const TraceScene* sc, const ScreenRays8* r, float8 dx, float8 dy, float8 dz, int8 cx,
                          int8 cy, float8 t_in, float8 t_out, int8 lanes, int8* in_front, int8* seen, int8* behind,
-                         int8* thick) {
+                         int8* thick, int8* past, float8* g_past) {
   int8 q = clamp(cy, 0, sc->size.y - 1) * sc->size.x + clamp(cx, 0, sc->size.x - 1);
   const RecordLanes plane = scattered_record_lanes(sc->planes, q);
   const float8 px = plane.x, py = plane.y, pz = plane.z, pw = plane.w;
@@ -257,8 +277,28 @@ inline float8 hit_pixel8(const TraceScene* sc, const ScreenRays8* r, float8 dx, 
   *behind |= passed & ~*in_front & *seen;
   *seen |= (lanes & sky) | (passed & *in_front);
   *thick |= lanes & within;
+  *past = passed & ~*in_front;  // behind by more than its thickness
+  *g_past = g_in;
   float8 t_hit = select((float8)(-1.0f), t_in, within);
   return select(t_hit, t_in + (t_out - t_in) * (g_in / (g_in - g_out)), crossing);
+}
+
+// hit_pixel's record of the first surface a ray passed behind within its guess, per lane: the lanes
+// `now` passing behind their pixel's surface (by g, hit_pixel8's g_in) that have none yet.
+inline void note_past_back8(const TraceScene* sc, const ScreenRays8* r, int8 now, float8 g, int8 cx, int8 cy,
+                            float8 t, int8* past, float8* past_t, int8* past_x, int8* past_y) {
+  now &= ~*past;
+  if (!any_lane(now)) return;
+  int x[8], y[8];
+  vstore8(clamp(cx, 0, sc->size.x - 1), 0, x);
+  vstore8(clamp(cy, 0, sc->size.y - 1), 0, y);
+  float guess[8];
+  for (int k = 0; k < 8; ++k) guess[k] = sc->guess[y[k] * sc->size.x + x[k]];
+  now &= -g <= vload8(0, guess) * (r->q0w + t * r->dqw);
+  *past |= now;
+  *past_t = select(*past_t, t, now);
+  *past_x = select(*past_x, cx, now);
+  *past_y = select(*past_y, cy, now);
 }
 
 // A packet: eight rays in float8 lanes and where each stands.
@@ -266,6 +306,8 @@ typedef struct {
   ScreenRays8 r;
   float8 dx, dy, dz, nudge, t, t_hit;
   int8 deeper, mip, cx, cy, hit_x, hit_y, active, iterations, fetches, seen, behind, thick;
+  int8 past, past_x, past_y;  // SSRCL_BACK_KNOWN: TraceScene's past, per lane
+  float8 past_t;
 } Packet8;
 
 // Starts the rays of the lanes marked in live[] (the others' lanes stay idle).
@@ -290,6 +332,8 @@ inline void packet_begin(Packet8* p, const TraceScene* sc, const ScreenRay* rays
   p->fetches = 0;
   p->seen = vload8(0, lane_seen) != 0;
   p->behind = p->thick = 0;
+  p->past = p->past_x = p->past_y = 0;
+  p->past_t = -1.0f;
   p->nudge = 0.01f / fmax(fabs(r.dsx), fabs(r.dsy));
   p->deeper = r.q0z * r.dqw - r.dqz * r.q0w > 0.0f;
   p->t = cell_exit8(&p->r, (float8)(0.0f), p->nudge, (float8)(1.0f), &p->cx, &p->cy);
@@ -309,8 +353,13 @@ inline bool packet_step(Packet8* p, const TraceScene* sc) {
   // Each side's texels are read only where a lane needs them.
   int8 in_front = 0, hit = 0;
   if (any_lane(fine)) {
+    int8 past_now;
+    float8 g_past;
     float8 t_pixel = hit_pixel8(sc, &p->r, p->dx, p->dy, p->dz, p->cx, p->cy, p->t, fmin(t_exit, 1.0f), fine, &in_front,
-                                &p->seen, &p->behind, &p->thick);
+                                &p->seen, &p->behind, &p->thick, &past_now, &g_past);
+#if SSRCL_BACK_KNOWN
+    note_past_back8(sc, &p->r, past_now, g_past, p->cx, p->cy, p->t, &p->past, &p->past_t, &p->past_x, &p->past_y);
+#endif
     hit = fine & (t_pixel >= 0.0f);
     p->t_hit = select(p->t_hit, t_pixel, hit);
     p->hit_x = select(p->hit_x, p->cx, hit);
@@ -377,12 +426,25 @@ inline void packet_end(const Packet8* p, TraceScene* sc, const int* live, float*
   vstore8(p->seen, 0, lane_seen);
   vstore8(p->behind, 0, lane_behind);
   vstore8(p->thick, 0, lane_thick);
+#if SSRCL_BACK_KNOWN
+  int lane_past[8], lane_past_x[8], lane_past_y[8];
+  float lane_past_t[8];
+  vstore8(p->past, 0, lane_past);
+  vstore8(p->past_x, 0, lane_past_x);
+  vstore8(p->past_y, 0, lane_past_y);
+  vstore8(p->past_t, 0, lane_past_t);
+#endif
   for (int k = 0; k < 8; ++k) {
     if (!live[k]) continue;
     t_hit_out[k] = t_lane[k];
     hit_cell[k] = (int2)(lane_x[k], lane_y[k]);
     sc[k].iterations = lane_iterations[k];
     sc[k].fetches += lane_fetches[k];
+#if SSRCL_BACK_KNOWN
+    sc[k].past = lane_past[k] != 0;
+    sc[k].past_t = lane_past_t[k];
+    sc[k].past_cell = (int2)(lane_past_x[k], lane_past_y[k]);
+#endif
 #if SSRCL_VIEWS
     sc[k].seen = lane_seen[k] != 0;
     sc[k].behind |= lane_behind[k] != 0;
@@ -586,7 +648,7 @@ __kernel void trace_rays(TraceParams params, __global const float* hzb, __global
                          __global const HzbLevel* levels,
                          __global const float4* positions, __global const float4* normals,
                          __global const int* ray_list, __global const int* pixel_rays,
-                         __global const float4* planes, __global int* work_counters,
+                         __global const float4* planes, __global const float* guess, __global int* work_counters,
                          __global const float4* color_pyramid, __global const float* base, __global const float* specular,
                          __global const float* f0, __global const float2* albedo, __global float4* ray_hit,
                          __global float4* ray_radiance, __global uchar* ray_state) {
@@ -612,7 +674,7 @@ __kernel void trace_rays(TraceParams params, __global const float* hzb, __global
     for (int k = 0; k < SSRCL_TRACE_ROUND; ++k) {
       const ScreenRay none = {(float2)(0.0f), (float2)(0.0f), (float4)(0.0f), (float4)(0.0f)};
       const TraceScene sc = {size, hzb, levels, level_count, planes, normals, params.max_iterations, 0, 0, 0, 0, 0,
-                             range};
+                             range, guess, 0, -1.0f, (int2)(0)};
       scene[k] = sc;  // every lane's: the packets read the frame from scene[0]
       lane[k].traced = lane_live[k] = 0;
       lane_ray[k] = none;  // lanes without a ray are traced too, their results unused
@@ -672,6 +734,12 @@ __kernel void trace_rays(TraceParams params, __global const float* hzb, __global
       const ScreenRay ray = lane_ray[k];
       int2 cell = lane_cell[k];  // the pixel whose surface the ray hit; its colour is the hit's colour
       float t = lane_t[k];
+#if SSRCL_BACK_KNOWN
+      if (t < 0.0f && sc.past) {
+        t = sc.past_t;
+        cell = sc.past_cell;
+      }
+#endif
 #if SSRCL_VIEWS
       // Only the primary ray's passage counts: the glossy hit's second ray below only shades the hit.
       ray_state[record] = (sc.behind ? SSRCL_RAY_BEHIND : 0) | (t >= 0.0f && sc.thick ? SSRCL_RAY_THICK : 0);

@@ -5,10 +5,11 @@
 namespace ssrcl::detail {
 
 const StageAccess BackPyramidStage::access{
-    "back pyramid", {Role::DepthPyramid, Role::Planes, Role::PyramidLevels}, {Role::BackPyramid}};
+    "back pyramid", {Role::DepthPyramid, Role::Planes, Role::BackGuess, Role::PyramidLevels}, {Role::BackPyramid}};
 
-void BackPyramidStage::configure(Device::Impl& device, bool used) {
+void BackPyramidStage::configure(Device::Impl& device, bool used, bool guessed) {
   used_ = used;
+  guessed_ = guessed;
   const cl::Program& program = device.program({"ssrcl_shared.h", "common.cl", "back_pyramid.cl"});
   level0_ = cl::Kernel(program, "back_level0");
   reduce_ = cl::Kernel(program, "range_reduce");
@@ -21,8 +22,8 @@ void BackPyramidStage::plan(FrameResources& resources, DeviceBuffers& buffers, c
 
 void BackPyramidStage::bind(const FrameResources& resources) {
   const cl::Buffer& back = resources.write(access, Role::BackPyramid);
-  bindArgs(level0_, 1, "hzb, planes, range", resources.read(access, Role::DepthPyramid),
-           resources.read(access, Role::Planes), back);
+  bindArgs(level0_, 1, "hzb, planes, guess, guessed, range", resources.read(access, Role::DepthPyramid),
+           resources.read(access, Role::Planes), resources.read(access, Role::BackGuess), cl_int(guessed_), back);
   bindArgs(reduce_, 0, "pyramid, levels", back, resources.read(access, Role::PyramidLevels));
 }
 

@@ -12,15 +12,16 @@ class BackPyramidStage {
   static const StageAccess access;
 
   // `used`: only the Hi-Z trace without views reads the pyramid (kernels/trace.cl SSRCL_BACK_SKIP);
-  // for the others it is not built.
-  void configure(Device::Impl& device, bool used);
+  // for the others it is not built. `guessed`: with a back-face pass, whose misses fall back on the
+  // thickness model's guess (BackGuess), a surface reaches as far as the larger of the two.
+  void configure(Device::Impl& device, bool used, bool guessed);
   void plan(FrameResources& resources, DeviceBuffers& buffers, const FrameShape& frame);
   void bind(const FrameResources& resources);
   void enqueue(cl::CommandQueue& q, const FrameConstants& frame, StageEvents& events);
 
  private:
   FrameShape frame_;
-  bool used_ = false;
+  bool used_ = false, guessed_ = false;
   cl::Kernel level0_, reduce_;
 };
 

@@ -15,6 +15,7 @@ enum class Role {
   Positions,         // view-space point, planar depth in w (SSRCL_NO_SURFACE: none)
   Normals,           // view-space normal, roughness in w
   Planes,            // surface plane over thickness, the trace's hit test (kernels/surface_plane.cl)
+  BackGuess,         // with a back-face pass: the model's thickness over the exact one where it knows (else 0)
   PixelRays,         // rays per pixel
   RayList,           // the listed pixels
   TileList,          // the listed tiles

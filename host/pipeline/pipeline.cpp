@@ -117,9 +117,9 @@ void Pipeline::Impl::plan() {
     setup.configure(d);
     thickness.configure(d, settings, back);
     hzb.configure(d);
-    backPyramid.configure(d, settings.tracer == Tracer::HiZ && viewCount == 0);
+    backPyramid.configure(d, settings.tracer == Tracer::HiZ && viewCount == 0, back);
     colors.configure(d, settings);
-    trace.configure(d, settings, base, materials, viewCount > 0);
+    trace.configure(d, settings, base, materials, viewCount > 0, back);
     resolve.configure(d, settings, viewCount);
     viewStage.configure(d, settings, views.size());
     filter.configure(d, settings);
@@ -139,7 +139,7 @@ void Pipeline::Impl::plan() {
 
   resources.beginPlan();
   setup.plan(resources, buffers, frame, colorChannels, !settings.constantRoughness);
-  thickness.plan(buffers, frame);
+  thickness.plan(resources, buffers, frame);
   hzb.plan(resources, buffers, frame);
   backPyramid.plan(resources, buffers, frame);
   colors.plan(resources, buffers, frame);

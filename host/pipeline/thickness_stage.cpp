@@ -2,7 +2,7 @@
 
 namespace ssrcl::detail {
 
-const StageAccess ThicknessStage::access{"thickness", {Role::Positions}, {Role::Planes}};
+const StageAccess ThicknessStage::access{"thickness", {Role::Positions}, {Role::Planes, Role::BackGuess}};
 
 void ThicknessStage::configure(Device::Impl& device, const TraceSettings& s, bool backDepth) {
   adaptive_ = s.thicknessModel == ThicknessModel::Adaptive;
@@ -13,10 +13,11 @@ void ThicknessStage::configure(Device::Impl& device, const TraceSettings& s, boo
   if (backDepth_) known_ = cl::Kernel(program, "known_thickness");
 }
 
-void ThicknessStage::plan(DeviceBuffers& buffers, const FrameShape& frame) {
+void ThicknessStage::plan(FrameResources& resources, DeviceBuffers& buffers, const FrameShape& frame) {
   frame_ = frame;
   buffers.add(rowRuns_, adaptive_ ? frame.pixels() * sizeof(cl_float2) : 0);
   buffers.add(back_, backDepth_ ? frame.pixels() * sizeof(float) : 0, CL_MEM_READ_ONLY);
+  resources.plan(access, buffers, Role::BackGuess, backDepth_ ? frame.pixels() * sizeof(float) : 0);
 }
 
 void ThicknessStage::bind(const FrameResources& resources) {
@@ -24,8 +25,8 @@ void ThicknessStage::bind(const FrameResources& resources) {
     bindArgs(kernel_, 1, "positions, row, planes", resources.read(access, Role::Positions), rowRuns_,
              resources.write(access, Role::Planes));
   if (backDepth_)
-    bindArgs(known_, 1, "positions, back, planes", resources.read(access, Role::Positions), back_,
-             resources.write(access, Role::Planes));
+    bindArgs(known_, 1, "positions, back, planes, guess", resources.read(access, Role::Positions), back_,
+             resources.write(access, Role::Planes), resources.write(access, Role::BackGuess));
 }
 
 void ThicknessStage::enqueue(cl::CommandQueue& q, const FrameConstants& frame, const TraceSettings& s,

@@ -11,7 +11,7 @@ class ThicknessStage {
   static const StageAccess access;
 
   void configure(Device::Impl& device, const TraceSettings& s, bool backDepth);
-  void plan(DeviceBuffers& buffers, const FrameShape& frame);
+  void plan(FrameResources& resources, DeviceBuffers& buffers, const FrameShape& frame);
   void bind(const FrameResources& resources);
   // `backDepth`: the planar back-face depth (0: unknown), with backDepth configured, of a camera
   // that is `orthographic` or not.

@@ -48,10 +48,12 @@ const std::vector<cl_float2>& albedoTable() {
 
 const StageAccess TraceStage::access{"trace",
                                      {Role::DepthPyramid, Role::BackPyramid, Role::PyramidLevels, Role::Positions, Role::Normals,
-                                      Role::RayList, Role::PixelRays, Role::Planes, Role::ColorPyramid},
+                                      Role::RayList, Role::PixelRays, Role::Planes, Role::BackGuess,
+                                      Role::ColorPyramid},
                                      {Role::RayHits, Role::RayRadiance, Role::RayStates}};
 
-void TraceStage::configure(Device::Impl& device, const TraceSettings& s, bool hasBase, bool materials, bool views) {
+void TraceStage::configure(Device::Impl& device, const TraceSettings& s, bool hasBase, bool materials, bool views,
+                           bool backDepth) {
   hasBase_ = hasBase;
   materials_ = hasBase && materials;
   counting_ = s.countWork;
@@ -60,6 +62,7 @@ void TraceStage::configure(Device::Impl& device, const TraceSettings& s, bool ha
                                       std::string("SSRCL_COUNT_WORK=") + (s.countWork ? "1" : "0")};
   if (views) defines.push_back("SSRCL_VIEWS=1");  // only then: programs without views stay as they were
   if (materials_) defines.push_back("SSRCL_MATERIAL_HITS=1");  // likewise without materials
+  if (backDepth) defines.push_back("SSRCL_BACK_KNOWN=1");  // likewise without a back-face pass
   const cl::Program& program = device.program(
       {"ssrcl_shared.h", "common.cl", "sequence.cl", "ggx.cl", "color_lookup.cl", "surface_plane.cl", "trace.cl"},
       defines);
@@ -86,11 +89,11 @@ void TraceStage::bind(const FrameResources& resources) {
   auto in = [&](Role role) { return resources.read(access, role); };
   auto out = [&](Role role) { return resources.write(access, role); };
   bindArgs(kernel_, 1,
-           "hzb, range, levels, positions, normals, ray_list, pixel_rays, planes, work_counters, color_pyramid, base, "
-           "specular, f0, albedo, ray_hit, ray_radiance, ray_state",
+           "hzb, range, levels, positions, normals, ray_list, pixel_rays, planes, guess, work_counters, color_pyramid, "
+           "base, specular, f0, albedo, ray_hit, ray_radiance, ray_state",
            in(Role::DepthPyramid), in(Role::BackPyramid), in(Role::PyramidLevels), in(Role::Positions), in(Role::Normals), in(Role::RayList),
-           in(Role::PixelRays), in(Role::Planes), workCounters_, in(Role::ColorPyramid), baseIn_, specularIn_, f0In_,
-           albedoTable_, out(Role::RayHits), out(Role::RayRadiance), out(Role::RayStates));
+           in(Role::PixelRays), in(Role::Planes), in(Role::BackGuess), workCounters_, in(Role::ColorPyramid), baseIn_,
+           specularIn_, f0In_, albedoTable_, out(Role::RayHits), out(Role::RayRadiance), out(Role::RayStates));
 }
 
 TraceParams TraceStage::params(const FrameConstants& constants, const FrameShape& frame, const TraceSettings& s,

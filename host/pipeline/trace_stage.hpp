@@ -18,7 +18,8 @@ class TraceStage {
   // `materials` (and base): hits on glossy pixels are shaded with their F0 (kernels/trace.cl).
   static const StageAccess access;
 
-  void configure(Device::Impl& device, const TraceSettings& s, bool hasBase, bool materials, bool views);
+  void configure(Device::Impl& device, const TraceSettings& s, bool hasBase, bool materials, bool views,
+                 bool backDepth);
   void plan(FrameResources& resources, DeviceBuffers& buffers, const FrameShape& frame);
   void bind(const FrameResources& resources);
   // Uploads base and specular, and F0 with materials (packed floats, when set; F0 in [0, 1]), and

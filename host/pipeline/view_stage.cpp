@@ -66,7 +66,7 @@ void ViewStage::plan(DeviceBuffers& buffers, const std::vector<ViewSource>& view
     colorChannels_.push_back(views[k].inputs.view("color").channels);
     u.resources.beginPlan();
     u.setup.plan(u.resources, buffers, u.frame, colorChannels_.back(), views[k].inputs.has("roughness"));
-    u.thickness.plan(buffers, u.frame);
+    u.thickness.plan(u.resources, buffers, u.frame);
     u.hzb.plan(u.resources, buffers, u.frame);
     u.colors.plan(u.resources, buffers, u.frame);
   }

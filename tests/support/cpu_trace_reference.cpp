@@ -69,6 +69,7 @@ struct Surfaces {
   std::vector<double> depth;
   std::vector<double> viewCos;  // |n . v|, v the unit viewing direction of the pixel's centre
   std::vector<double> behind;   // how far behind its plane a ray may pass and hit it, along the normal
+  std::vector<double> guess;    // with a back-face depth there: the thickness's bound (else 0)
   int index(int x, int y) const { return y * camera.width + x; }
 };
 
@@ -80,7 +81,8 @@ std::vector<CpuRay> cpuMirrorTrace(const Camera& camera, const Image& depth, con
   const size_t n = size_t(w) * h;
   const glm::dmat3 normalMatrix = glm::inverseTranspose(glm::dmat3(camera.view));
   Surfaces sf{camera, std::vector<bool>(n, false), std::vector<dvec3>(n), std::vector<dvec3>(n),
-              std::vector<double>(n, 0.0), std::vector<double>(n, 0.0), std::vector<double>(n, 0.0)};
+              std::vector<double>(n, 0.0), std::vector<double>(n, 0.0), std::vector<double>(n, 0.0),
+              std::vector<double>(n, 0.0)};
   std::vector<bool> normalOk(n, false);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
@@ -99,8 +101,10 @@ std::vector<CpuRay> cpuMirrorTrace(const Camera& camera, const Image& depth, con
       sf.viewCos[i] = std::abs(glm::dot(view, sf.normal[i]));
       sf.behind[i] = options.thicknessRelative * d * sf.viewCos[i];
       const double b = options.backDepth ? options.backDepth->at(x, y, 0) : 0.0;
-      if (sf.valid[i] && b > d && b < 1e10)
+      if (sf.valid[i] && b > d && b < 1e10) {
+        sf.guess[i] = sf.behind[i];
         sf.behind[i] = std::abs(glm::dot(pointAtDepth(camera, centre, b) - sf.point[i], sf.normal[i]));
+      }
     }
 
   std::vector<CpuRay> rays(n);
@@ -125,6 +129,9 @@ std::vector<CpuRay> cpuMirrorTrace(const Camera& camera, const Image& depth, con
       Segment seg;
       if (!(len > 0) || !makeSegment(camera, p, p + dir * len, seg)) continue;
 
+      // The first known back's pixel the ray passes behind, and where.
+      int pastX = -1, pastY = -1;
+      double pastT = -1;
       // Tests pixel (cx, cy) over [t0, t1]; true on a hit.
       const auto test = [&](int cx, int cy, double t0, double t1) {
         cx = std::clamp(cx, 0, w - 1);
@@ -146,7 +153,14 @@ std::vector<CpuRay> cpuMirrorTrace(const Camera& camera, const Image& depth, con
                    -g0 / (seg.q0.w + t0 * seg.dq.w) <= sf.behind[q]) {
           tHit = t0;
         }
-        if (tHit < 0) return false;
+        if (tHit < 0) {
+          if (g1 <= 0 && -g0 / (seg.q0.w + t0 * seg.dq.w) <= sf.guess[q] && pastT < 0) {
+            pastX = cx;
+            pastY = cy;
+            pastT = t0;
+          }
+          return false;
+        }
         ray.hit = true;
         ray.hitX = cx;
         ray.hitY = cy;
@@ -187,6 +201,13 @@ std::vector<CpuRay> cpuMirrorTrace(const Camera& camera, const Image& depth, con
           if (test(int(std::floor(s.x)), int(std::floor(s.y)), t, t1)) break;
           t = t1;
         }
+      }
+      if (!ray.hit && pastT >= 0) {
+        ray.hit = ray.pastBack = true;
+        ray.hitX = pastX;
+        ray.hitY = pastY;
+        ray.hitPoint = seg.at(pastT);
+        ray.distance = glm::length(ray.hitPoint - p);
       }
     }
   return rays;

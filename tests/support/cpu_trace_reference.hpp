@@ -21,6 +21,10 @@
 //     pixels never. Where a back-face depth b is given and lies beyond the pixel's depth, the
 //     bound along the normal is instead the distance behind the plane of the point at planar
 //     depth b on the pixel centre's viewing line.
+//   * A ray that hits nothing but passed behind such a pixel's plane within the constant's bound
+//     (facing it, not hit, behind it at the end of the pixel's stretch and by at most the
+//     constant's bound at its start) takes the first such pixel instead, at the start of its
+//     stretch there: the constant's hit (kernels/trace.cl SSRCL_BACK_KNOWN).
 //   * Stretches: EveryPixel gives each pixel the ray crosses exactly its own stretch, in order
 //     (the limit of infinitely fine linear steps); Linear takes fixed steps of `linearStepPixels`
 //     along the major screen axis and tests each step against the pixel it ends in, as the
@@ -44,6 +48,7 @@ struct CpuTraceOptions {
 struct CpuRay {
   bool traced = false;  // the pixel has a surface and a usable normal facing the viewer
   bool hit = false;
+  bool pastBack = false;  // the hit is a passage behind a known back, within the constant's bound
   int hitX = -1, hitY = -1;                // the pixel whose plane was hit
   glm::dvec3 origin{0.0}, direction{0.0};  // view space
   glm::dvec3 hitPoint{0.0};
