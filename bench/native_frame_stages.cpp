@@ -24,7 +24,7 @@ bool predicts(float d0, float d1, float d2) {
 bool joined(const vec4* line, int k, int length, int step) {
   const float da = line[(k - 1) * step].w, db = line[k * step].w;
   if (da >= kNoSurface || db >= kNoSurface) return false;
-  if (std::fabs(db - da) <= 0.02f * std::fmin(da, db)) return true;
+  if (std::fabs(db - da) <= 0.02f * clFmin(da, db)) return true;
   if (k >= 2 && line[(k - 2) * step].w < kNoSurface && predicts(line[(k - 2) * step].w, da, db)) return true;
   return k + 1 < length && line[(k + 1) * step].w < kNoSurface && predicts(line[(k + 1) * step].w, db, da);
 }
@@ -63,9 +63,9 @@ struct ThicknessLines {
         }
         const float d = positions[i].w;
         const vec2 r = rowRuns[i];
-        const float depthChord = std::fmin(std::fmax(chord, r.y), std::fmin(run, r.x));
+        const float depthChord = clFmin(clFmax(chord, r.y), clFmin(run, r.x));
         if (d < kNoSurface)
-          planes[i] *= d / std::fmin(std::fmax(model.scale * depthChord, model.minRel * d), model.maxRel * d);
+          planes[i] *= d / clFmin(clFmax(model.scale * depthChord, model.minRel * d), model.maxRel * d);
       }
       start = k;
     }
@@ -78,34 +78,33 @@ float slabFarEnd(const glm::mat4& invProj, int w, int h, vec2 corner, vec3 n, fl
   viewLine(invProj, vec2(2.0f * corner.x / float(w) - 1.0f, 1.0f - 2.0f * corner.y / float(h)), origin, step);
   const float along = glm::dot(step, n), from = glm::dot(origin, n);
   sign |= along > 0.0f ? 1 : along < 0.0f ? 2 : 3;
-  return std::fmax((c - from) / along, (c - 1.0f - from) / along) - origin.z;
+  return clFmax((c - from) / along, (c - 1.0f - from) / along) - origin.z;
 }
 
-// back_pyramid.cl back_level0, row y.
+// back_pyramid.cl back_level0, row y; every pixel computed and the sky's result selected away,
+// so that the loop vectorises.
 SSRCL_NATIVE_CLONES void rangeLevel0Row(const glm::mat4& invProj, int w, int h, int y, const float* hzb,
                                         const vec4* planes, vec2* range) {
   constexpr float lo = -0.05f, hi = 1.05f;  // SSRCL_BACK_MARGIN
+  const float fy = float(y);
   for (int x = 0; x < w; ++x) {
     const int i = y * w + x;
     const vec4 plane = planes[i];
-    float farEnd = -INFINITY;
-    if (plane.w != -INFINITY) {
-      int sign = 0;
-      const vec3 n(plane);
-      const float fx = float(x), fy = float(y);
-      farEnd = std::fmax(std::fmax(slabFarEnd(invProj, w, h, vec2(fx + lo, fy + lo), n, plane.w, sign),
-                                   slabFarEnd(invProj, w, h, vec2(fx + hi, fy + lo), n, plane.w, sign)),
-                         std::fmax(slabFarEnd(invProj, w, h, vec2(fx + lo, fy + hi), n, plane.w, sign),
-                                   slabFarEnd(invProj, w, h, vec2(fx + hi, fy + hi), n, plane.w, sign)));
-      farEnd = (sign == 1 || sign == 2) && std::isfinite(farEnd) ? farEnd + 1e-3f * std::fabs(farEnd) : INFINITY;
-    }
-    range[i] = vec2(hzb[i], farEnd);
+    int sign = 0;
+    const vec3 n(plane);
+    const float fx = float(x);
+    float farEnd = clFmax(clFmax(slabFarEnd(invProj, w, h, vec2(fx + lo, fy + lo), n, plane.w, sign),
+                                 slabFarEnd(invProj, w, h, vec2(fx + hi, fy + lo), n, plane.w, sign)),
+                          clFmax(slabFarEnd(invProj, w, h, vec2(fx + lo, fy + hi), n, plane.w, sign),
+                                 slabFarEnd(invProj, w, h, vec2(fx + hi, fy + hi), n, plane.w, sign)));
+    farEnd = (sign == 1 || sign == 2) && std::fabs(farEnd) < INFINITY ? farEnd + 1e-3f * std::fabs(farEnd) : INFINITY;
+    range[i] = vec2(hzb[i], plane.w != -INFINITY ? farEnd : -INFINITY);  // SSRCL_NO_PLANE: nothing to hit
   }
 }
 
 SSRCL_NATIVE_CLONES void rangeReduceRow(const std::vector<HzbLevel>& levels, int l, int y, vec2* range) {
   reducePyramidRow(levels, l, y, range, [](vec2 a, vec2 b, vec2 c, vec2 d, bool, bool) {
-    return vec2(std::fmin(std::fmin(a.x, b.x), std::fmin(c.x, d.x)), std::fmax(std::fmax(a.y, b.y), std::fmax(c.y, d.y)));
+    return vec2(clFmin(clFmin(a.x, b.x), clFmin(c.x, d.x)), clFmax(clFmax(a.y, b.y), clFmax(c.y, d.y)));
   });
 }
 
@@ -137,13 +136,11 @@ void buildRangePyramid(const std::vector<HzbLevel>& levels, const glm::mat4& inv
                   const vec4* planes, vec2* range, int threads) {
   const int w = levels[0].width, h = levels[0].height;
   parallelRows(h, threads, [&](int y) { rangeLevel0Row(invProj, w, h, y, hzb, planes, range); });
-  for (int l = 1; l < int(levels.size()); ++l)
-    parallelRows(levels[l].height, threads, [&, l](int y) { rangeReduceRow(levels, l, y, range); });
+  reduceLevels(levels, threads, [&](int l, int y) { rangeReduceRow(levels, l, y, range); });
 }
 
 void reduceColorPyramid(const std::vector<HzbLevel>& levels, vec4* pyramid, int threads) {
-  for (int l = 1; l < int(levels.size()); ++l)
-    parallelRows(levels[l].height, threads, [&, l](int y) { colorReduceRow(levels, l, y, pyramid); });
+  reduceLevels(levels, threads, [&](int l, int y) { colorReduceRow(levels, l, y, pyramid); });
 }
 
 }  // namespace ssrcl::bench

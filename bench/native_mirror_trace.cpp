@@ -187,8 +187,7 @@ struct NativeMirrorTrace::Impl {
 
   double reduceHzb(int threads) {
     const auto start = Clock::now();
-    for (int l = 1; l < int(levels.size()); ++l)
-      parallelRows(levels[l].height, threads, [this, l](int y) { reduceRow(l, y); });
+    reduceLevels(levels, threads, [this](int l, int y) { reduceRow(l, y); });
     return msSince(start);
   }
 

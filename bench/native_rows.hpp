@@ -38,19 +38,38 @@ inline void parallelRows(int rows, int threads, const std::function<void(int)>& 
   for (std::thread& t : pool) t.join();
 }
 
+// Levels 1.. of a pyramid, row(l, y) for each row, on `threads` threads where a level has the
+// texels to be worth starting them: on a loaded machine each start waits for a time slice, and
+// the twenty small levels' starts cost more than their work.
+inline void reduceLevels(const std::vector<HzbLevel>& levels, int threads, const std::function<void(int, int)>& row) {
+  for (int l = 1; l < int(levels.size()); ++l) {
+    const HzbLevel level = levels[l];
+    parallelRows(level.height, level.width * level.height >= (1 << 16) ? threads : 1, [&row, l](int y) { row(l, y); });
+  }
+}
+
+// OpenCL C's fmin and fmax (a NaN operand is ignored) as a compare and a select, which loops
+// vectorise: std::fmin and std::fmax are library calls unless NaNs are assumed away.
+inline float clFmin(float a, float b) { return a <= b || b != b ? a : b; }
+inline float clFmax(float a, float b) { return a >= b || b != b ? a : b; }
+
 // Row y of pyramid level l (levels as host/pipeline/stage_support.cpp lays them out: each level
 // ceil(half) of the last) from the four texels under each of its texels, as kernels/common.cl
 // reduce_cell clamps them: combine(a, b, c, d, x1 != x0, y1 != y0), (b, d) the right column,
-// (c, d) the lower row, repeated at an odd edge.
+// (c, d) the lower row, repeated at an odd edge. The texels with both columns in a loop of their
+// own (no clamped index: it vectorises), then the odd edge's.
 template <class T, class Combine>
 inline void reducePyramidRow(const std::vector<HzbLevel>& levels, int l, int y, T* pyramid, Combine combine) {
   const HzbLevel dst = levels[l], src = levels[l - 1];
-  const T* s = pyramid + src.offset;
-  const int y0 = 2 * y, y1 = std::min(y0 + 1, src.height - 1);
-  for (int x = 0; x < dst.width; ++x) {
-    const int x0 = 2 * x, x1 = std::min(x0 + 1, src.width - 1);
-    pyramid[dst.offset + y * dst.width + x] = combine(s[y0 * src.width + x0], s[y0 * src.width + x1],
-                                                      s[y1 * src.width + x0], s[y1 * src.width + x1], x1 != x0, y1 != y0);
+  const int y0 = 2 * y, y1 = std::min(y0 + 1, src.height - 1), pairs = src.width / 2;
+  const T* row0 = pyramid + src.offset + y0 * src.width;
+  const T* row1 = pyramid + src.offset + y1 * src.width;
+  T* out = pyramid + dst.offset + y * dst.width;
+  const bool hasY1 = y1 != y0;
+  for (int x = 0; x < pairs; ++x) out[x] = combine(row0[2 * x], row0[2 * x + 1], row1[2 * x], row1[2 * x + 1], true, hasY1);
+  if (pairs < dst.width) {
+    const int x0 = 2 * pairs;
+    out[pairs] = combine(row0[x0], row0[x0], row1[x0], row1[x0], false, hasY1);
   }
 }
 
