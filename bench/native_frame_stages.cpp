@@ -1,7 +1,9 @@
 #include "native_frame_stages.hpp"
 
+#include <algorithm>
 #include <cfloat>
 #include <cmath>
+#include <vector>
 
 #include "native_rows.hpp"
 
@@ -15,18 +17,29 @@ constexpr float kNoSurface = FLT_MAX;  // SSRCL_NO_SURFACE
 
 float mix(float a, float b, float f) { return a + (b - a) * f; }  // OpenCL C's mix
 
-// thickness.cl predicts and joined, on one line's positions (element k at line[k * step]).
-bool predicts(float d0, float d1, float d2) {
-  const float tol = 0.01f;
-  return std::fabs(1.0f / d2 - (2.0f / d1 - 1.0f / d0)) <= tol / d2 || std::fabs(d2 - (2.0f * d1 - d0)) <= tol * d2;
-}
+// thickness.cl surface_thickness on one line (row or column) copied out contiguous: the depths'
+// reciprocals and the neighbour tests (joined) for the whole line first, in loops without early
+// exits that vectorise, then the runs.
+struct LineScratch {
+  std::vector<vec4> points;                 // the line's positions
+  std::vector<float> depth, inv, tolInv;    // d, 1 / d, 0.01 / d; depth and inv padded by one each side
+  std::vector<unsigned char> joined;        // joined[k]: pixels k - 1 and k on one surface
+  std::vector<vec2> rows;                   // columns: the pixels' row runs and chords
+  std::vector<float> factor;                // columns: what each pixel's plane is multiplied by
+  void resize(int length) {
+    points.resize(length);
+    rows.resize(length);
+    factor.resize(length);
+    depth.resize(length + 2);
+    inv.resize(length + 2);
+    tolInv.resize(length);
+    joined.resize(length + 1);
+  }
+};
 
-bool joined(const vec4* line, int k, int length, int step) {
-  const float da = line[(k - 1) * step].w, db = line[k * step].w;
-  if (da >= kNoSurface || db >= kNoSurface) return false;
-  if (std::fabs(db - da) <= 0.02f * clFmin(da, db)) return true;
-  if (k >= 2 && line[(k - 2) * step].w < kNoSurface && predicts(line[(k - 2) * step].w, da, db)) return true;
-  return k + 1 < length && line[(k + 1) * step].w < kNoSurface && predicts(line[(k + 1) * step].w, db, da);
+// thickness.cl predicts, with 1 / d and 0.01 / d given (the same roundings: 2 / d1 is 2 (1 / d1)).
+inline bool predicts(float d0, float inv0, float d1, float inv1, float d2, float inv2, float tolInv2) {
+  return std::fabs(inv2 - (2.0f * inv1 - inv0)) <= tolInv2 || std::fabs(d2 - (2.0f * d1 - d0)) <= 0.01f * d2;
 }
 
 struct ThicknessLines {
@@ -36,39 +49,83 @@ struct ThicknessLines {
   vec2* rowRuns;
   AdaptiveThickness model;
 
-  // thickness.cl surface_thickness, one work-item's line: row `line` (axis 0) or column `line`.
-  SSRCL_NATIVE_CLONES void line(int axis, int line) const {
-    const int length = axis == 0 ? w : h, step = axis == 0 ? 1 : w, base = axis == 0 ? line * w : line;
-    const vec4* at = positions + base;
+  // The line's depths with a no-surface pixel either side (thickness.cl's bounds checks), their
+  // reciprocals and each pixel's join to the one before it.
+  SSRCL_NATIVE_CLONES static void joins(LineScratch& s, int length) {
+    float* d = s.depth.data() + 1;
+    float* inv = s.inv.data() + 1;
+    d[-1] = d[length] = kNoSurface;
+    for (int k = 0; k < length; ++k) d[k] = s.points[k].w;
+    for (int k = -1; k <= length; ++k) inv[k] = 1.0f / d[k];
+    for (int k = 0; k < length; ++k) s.tolInv[k] = 0.01f / d[k];
+    for (int k = 1; k < length; ++k) {
+      const float da = d[k - 1], db = d[k], dp = d[k - 2], dn = d[k + 1];
+      const bool surfaces = da < kNoSurface && db < kNoSurface;
+      const bool close = std::fabs(db - da) <= 0.02f * clFmin(da, db);
+      const bool back = dp < kNoSurface && predicts(dp, inv[k - 2], da, inv[k - 1], db, inv[k], s.tolInv[k]);
+      const bool ahead = dn < kNoSurface && predicts(dn, inv[k + 1], db, inv[k], da, inv[k - 1], s.tolInv[k - 1]);
+      s.joined[k] = surfaces & (close | back | ahead);
+    }
+    s.joined[length] = 0;
+  }
+
+  // One line whose points (and for a column, row runs) are in s: a row's runs and chords to
+  // `runs`, or a column's plane factors to s.factor.
+  SSRCL_NATIVE_CLONES void line(int axis, int length, LineScratch& s, vec2* runs) const {
+    joins(s, length);
+    const float* d = s.depth.data() + 1;
+    const float* inv = s.inv.data() + 1;
     int start = 0;
     for (int k = 1; k <= length; ++k) {
-      if (k < length && joined(at, k, length, step)) continue;
-      const int prev = (k - 1) * step;
-      const float dFirst = at[start * step].w, dLast = at[prev].w;
+      if (s.joined[k]) continue;
+      // The run [start, k): flat (a slab seen from the front) or each pixel's chord.
+      const int last = k - 1;
       bool flat = true;
-      for (int j = start + 1; j < k - 1 && flat; ++j) {
-        const float f = float(j - start) / float(k - 1 - start), d = at[j * step].w;
-        flat = std::fabs(1.0f / d - mix(1.0f / dFirst, 1.0f / dLast, f)) <= 0.01f / d ||
-               std::fabs(d - mix(dFirst, dLast, f)) <= 0.01f * d;
+      for (int j = start + 1; j < last && flat; ++j) {
+        const float f = float(j - start) / float(last - start);
+        flat = std::fabs(inv[j] - mix(inv[start], inv[last], f)) <= s.tolInv[j] ||
+               std::fabs(d[j] - mix(d[start], d[last], f)) <= 0.01f * d[j];
       }
-      const vec3 first(at[start * step]), last(at[prev]);
-      const float run = glm::distance(first, last);
+      const vec3 first(s.points[start]), end(s.points[last]);
+      const float run = glm::distance(first, end);
       for (int j = start; j < k; ++j) {
-        const int i = base + j * step;
-        const vec3 p(positions[i]);
-        const float chord = flat ? 0.0f : 2.0f * std::sqrt(glm::distance(first, p) * glm::distance(p, last));
+        const vec3 p(s.points[j]);
+        const float chord = flat ? 0.0f : 2.0f * std::sqrt(glm::distance(first, p) * glm::distance(p, end));
         if (axis == 0) {
-          rowRuns[i] = vec2(run, chord);
+          runs[j] = vec2(run, chord);
           continue;
         }
-        const float d = positions[i].w;
-        const vec2 r = rowRuns[i];
+        const vec2 r = s.rows[j];
         const float depthChord = clFmin(clFmax(chord, r.y), clFmin(run, r.x));
-        if (d < kNoSurface)
-          planes[i] *= d / clFmin(clFmax(model.scale * depthChord, model.minRel * d), model.maxRel * d);
+        s.factor[j] = d[j] < kNoSurface
+                          ? d[j] / clFmin(clFmax(model.scale * depthChord, model.minRel * d[j]), model.maxRel * d[j])
+                          : 1.0f;
       }
       start = k;
     }
+  }
+
+  void row(int y, LineScratch& s) const {
+    s.resize(w);
+    std::copy(positions + size_t(y) * w, positions + size_t(y + 1) * w, s.points.begin());
+    line(0, w, s, rowRuns + size_t(y) * w);
+  }
+
+  // Columns x0 .. x0 + kColumns - 1: read and written a row of the block at a time (a column
+  // alone would take a cache line a pixel).
+  static constexpr int kColumns = 16;
+  void columns(int x0, std::vector<LineScratch>& block) const {
+    const int n = std::min(kColumns, w - x0);
+    for (int c = 0; c < n; ++c) block[c].resize(h);
+    for (int y = 0; y < h; ++y)
+      for (int c = 0; c < n; ++c) {
+        const size_t i = size_t(y) * w + x0 + c;
+        block[c].points[y] = positions[i];
+        block[c].rows[y] = rowRuns[i];
+      }
+    for (int c = 0; c < n; ++c) line(1, h, block[c], nullptr);
+    for (int y = 0; y < h; ++y)
+      for (int c = 0; c < n; ++c) planes[size_t(y) * w + x0 + c] *= block[c].factor[y];
   }
 };
 
@@ -128,8 +185,15 @@ SSRCL_NATIVE_CLONES void colorReduceRow(const std::vector<HzbLevel>& levels, int
 void adaptiveThickness(int width, int height, const vec4* positions, vec4* planes, vec2* rowRuns,
                        AdaptiveThickness model, int threads) {
   const ThicknessLines lines{width, height, positions, planes, rowRuns, model};
-  parallelRows(height, threads, [&lines](int y) { lines.line(0, y); });
-  parallelRows(width, threads, [&lines](int x) { lines.line(1, x); });
+  parallelRows(height, threads, [&lines](int y) {
+    thread_local LineScratch scratch;
+    lines.row(y, scratch);
+  });
+  const int blocks = (width + ThicknessLines::kColumns - 1) / ThicknessLines::kColumns;
+  parallelRows(blocks, threads, [&lines](int b) {
+    thread_local std::vector<LineScratch> block(ThicknessLines::kColumns);
+    lines.columns(b * ThicknessLines::kColumns, block);
+  });
 }
 
 void buildRangePyramid(const std::vector<HzbLevel>& levels, const glm::mat4& invProj, const float* hzb,
