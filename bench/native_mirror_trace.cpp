@@ -1,18 +1,17 @@
 #include "native_mirror_trace.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <cfloat>
 #include <chrono>
 #include <cmath>
-#include <functional>
 #include <mutex>
 #include <stdexcept>
 #include <glm/glm.hpp>
 #include <glm/gtc/matrix_inverse.hpp>
-#include <thread>
 #include <time.h>
 
+#include "native_frame_stages.hpp"
+#include "native_rows.hpp"
 #include "packet_hiz_trace.hpp"
 
 namespace ssrcl::bench {
@@ -24,15 +23,16 @@ using glm::vec4;
 using Clock = std::chrono::steady_clock;
 constexpr float kNoSurface = FLT_MAX;  // SSRCL_NO_SURFACE
 constexpr float kBackgroundDepth = 1e10f;
+const vec4 kNoPlane(0.0f, 0.0f, 0.0f, -INFINITY);  // SSRCL_NO_PLANE
 
-// The row loops in clones for the ISA extensions the CPU has (picked at load time), so the
-// roofline gets FMA and wide vectors where they exist and the binary still runs everywhere;
-// flattened, so what they call is compiled into each clone.
-#if defined(__x86_64__) && defined(__GNUC__)
-#define SSRCL_NATIVE_CLONES __attribute__((flatten, target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
-#else
-#define SSRCL_NATIVE_CLONES
-#endif
+// common.cl sanitize_radiance (SSRCL_MAX_RADIANCE 1e20).
+float sanitizeRadiance(float v) { return std::isnan(v) ? 0.0f : std::clamp(v, 0.0f, 1e20f); }
+
+// surface_plane.cl surface_plane.
+vec4 surfacePlane(vec3 p, vec3 n, float thickness) {
+  const float distance = glm::length(p);
+  return vec4(n, glm::dot(p, n)) * (1.0f / std::clamp(thickness, FLT_EPSILON * distance, 1e6f * distance));
+}
 
 // This thread's CPU time: on a shared machine, what the work cost where wall time also counts
 // the other processes' turns.
@@ -44,22 +44,6 @@ double threadCpuMs() {
 
 double msSince(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
-
-// Rows in blocks taken from a shared counter: rays' costs vary a lot between rows.
-void parallelRows(int rows, int threads, const std::function<void(int)>& row) {
-  std::atomic<int> next{0};
-  constexpr int kBlock = 4;
-  auto worker = [&] {
-    for (int y0; (y0 = next.fetch_add(kBlock)) < rows;)
-      for (int y = y0; y < std::min(rows, y0 + kBlock); ++y) row(y);
-  };
-  // No thread for less than a block each: the small pyramid levels would wait on thread starts.
-  threads = std::min(threads, (rows + kBlock - 1) / kBlock);
-  std::vector<std::thread> pool;
-  for (int k = 1; k < threads; ++k) pool.emplace_back(worker);
-  worker();
-  for (std::thread& t : pool) t.join();
 }
 
 struct ScreenRay {
@@ -78,13 +62,16 @@ struct NativeMirrorTrace::Impl {
   glm::mat3 normalMatrix;
   float nearPlane, farPlane, thicknessRel, maxRoughness, constantRoughness;
   int maxIterations;
+  bool adaptive;  // setup's planes for the adaptive thickness model (runFrame's thickness stage rescales them)
+  AdaptiveThickness thicknessModel;
   const GBuffer& g;
   std::vector<HzbLevel> levels;
   std::vector<float> hzb, thickness, distance, packetHits, linearHits;
   MinMaxPyramid pyramid;
   std::vector<uint32_t> pyramidWords;
   PacketStats packetStats;
-  std::vector<vec4> positions, normals;
+  std::vector<vec4> positions, normals, planes, colors;  // colors: the colour pyramid, every level
+  std::vector<vec2> range, rowRuns;                        // range: the range pyramid, every level
   std::vector<unsigned char> reflects;
   long long rays = 0;
 
@@ -93,7 +80,8 @@ struct NativeMirrorTrace::Impl {
         normalMatrix(glm::inverseTranspose(glm::dmat3(camera.view))), nearPlane(float(camera.nearPlane)),
         farPlane(float(camera.farPlane)), thicknessRel(s.thicknessRelative), maxRoughness(s.maxRoughness),
         constantRoughness(s.constantRoughness.value_or(-1.0f)), maxIterations(s.maxIterations > 0 ? s.maxIterations : 512),
-        g(gbuffer) {
+        adaptive(s.thicknessModel == ThicknessModel::Adaptive),
+        thicknessModel{s.thicknessScale, s.thicknessMinRelative, s.thicknessMaxRelative}, g(gbuffer) {
     // The pyramid as host/pipeline/stage_support.cpp lays it out: each level ceil(half) of the last, to 1x1.
     int offset = 0;
     for (int lw = w, lh = h;; lw = (lw + 1) / 2, lh = (lh + 1) / 2) {
@@ -110,20 +98,17 @@ struct NativeMirrorTrace::Impl {
     linearHits.resize(3 * n);
     positions.resize(n);
     normals.resize(n);
+    planes.resize(n);
+    colors.resize(offset);
+    range.resize(offset);
+    rowRuns.resize(n);
     reflects.resize(n);
   }
 
   vec2 pixelToNdc(vec2 p) const { return {2.0f * p.x / float(w) - 1.0f, 1.0f - 2.0f * p.y / float(h)}; }
   vec2 ndcToPixel(vec2 n) const { return {(n.x + 1.0f) * 0.5f * float(w), (1.0f - n.y) * 0.5f * float(h)}; }
 
-  // common.cl view_line.
-  void viewLine(vec2 ndc, vec3& origin, vec3& step) const {
-    const vec4 a = invProj * vec4(ndc, 0.0f, 1.0f);
-    const vec4 e = invProj[2];
-    const vec3 v = vec3(a) * e.w - vec3(e) * a.w;
-    step = v / -v.z;
-    origin = e.w != 0.0f ? vec3(e) / e.w : vec3(a) / a.w;
-  }
+  void viewLine(vec2 ndc, vec3& origin, vec3& step) const { bench::viewLine(invProj, ndc, origin, step); }
 
   // setup.cl pixel_lines / pixel_line: viewing lines as an affine map of pixel coordinates.
   vec4 lineAtOrigin, linePerX, linePerY, lineEye;
@@ -169,6 +154,9 @@ struct NativeMirrorTrace::Impl {
       nv = normalOk ? nv / len : vec3(0, 0, 1);
       float r = constantRoughness >= 0.0f ? constantRoughness : g.roughness.data[i];
       r = std::isnan(r) ? 1.0f : std::clamp(r, 0.0f, 1.0f);
+      const float* c = &g.color.data[i * g.color.channels];
+      colors[i] = surface ? vec4(sanitizeRadiance(c[0]), sanitizeRadiance(c[1]), sanitizeRadiance(c[2]), r < 0.9f ? 0.0f : 1.0f)
+                          : vec4(0.0f);
       float nearest = d;
       if (surface && normalOk)
         for (int corner = 0; corner < 4; ++corner) {
@@ -179,20 +167,28 @@ struct NativeMirrorTrace::Impl {
       hzb[i] = surface ? nearest : kNoSurface;
       normals[i] = vec4(nv, r);
       thickness[i] = surface ? thicknessRel * d * std::fabs(glm::dot(viewDir, nv)) : 0.0f;
+      planes[i] = surface ? surfacePlane(p, nv, (adaptive ? 1.0f : thicknessRel) * d * std::fabs(glm::dot(viewDir, nv)))
+                          : kNoPlane;
       reflects[i] = surface && normalOk && r <= maxRoughness && glm::dot(viewDir, nv) < 0.0f;
     }
   }
 
   SSRCL_NATIVE_CLONES void reduceRow(int l, int y) {
-    const HzbLevel dst = levels[l], src = levels[l - 1];
-    const float* s = hzb.data() + src.offset;
-    const int y0 = 2 * y, y1 = std::min(y0 + 1, src.height - 1);
-    for (int x = 0; x < dst.width; ++x) {
-      const int x0 = 2 * x, x1 = std::min(x0 + 1, src.width - 1);
-      hzb[dst.offset + y * dst.width + x] =
-          std::min(std::min(s[y0 * src.width + x0], s[y0 * src.width + x1]),
-                   std::min(s[y1 * src.width + x0], s[y1 * src.width + x1]));
-    }
+    reducePyramidRow(levels, l, y, hzb.data(), [](float a, float b, float c, float d, bool, bool) {
+      return std::min(std::min(a, b), std::min(c, d));
+    });
+  }
+
+  double setup(int threads) {
+    const auto start = Clock::now();
+    parallelRows(h, threads, [this](int y) { setupRow(y); });
+    return msSince(start);
+  }
+
+  double reduceHzb(int threads) {
+    const auto start = Clock::now();
+    reduceLevels(levels, threads, [this](int l, int y) { reduceRow(l, y); });
+    return msSince(start);
   }
 
   float hzbFetch(int level, glm::ivec2 cell) const {
@@ -448,17 +444,29 @@ NativeMirrorTrace::~NativeMirrorTrace() { delete impl_; }
 NativeStageMs NativeMirrorTrace::run(int threads) {
   Impl& m = *impl_;
   NativeStageMs ms;
-  auto start = Clock::now();
-  parallelRows(m.h, threads, [&m](int y) { m.setupRow(y); });
-  ms.setup = msSince(start);
-  start = Clock::now();
-  for (int l = 1; l < int(m.levels.size()); ++l)
-    parallelRows(m.levels[l].height, threads, [&m, l](int y) { m.reduceRow(l, y); });
-  ms.hzb = msSince(start);
-  start = Clock::now();
+  ms.setup = m.setup(threads);
+  ms.hzb = m.reduceHzb(threads);
+  const auto start = Clock::now();
   parallelRows(m.h, threads, [&m](int y) { m.traceRow(y); });
   ms.trace = msSince(start);
   m.rays = std::count(m.reflects.begin(), m.reflects.end(), 1);
+  return ms;
+}
+
+FrameStageMs NativeMirrorTrace::runFrame(int threads) {
+  Impl& m = *impl_;
+  FrameStageMs ms;
+  ms.setup = m.setup(threads);
+  ms.hzb = m.reduceHzb(threads);
+  auto start = Clock::now();
+  if (m.adaptive) adaptiveThickness(m.w, m.h, m.positions.data(), m.planes.data(), m.rowRuns.data(), m.thicknessModel, threads);
+  ms.thickness = msSince(start);
+  start = Clock::now();
+  buildRangePyramid(m.levels, m.invProj, m.hzb.data(), m.planes.data(), m.range.data(), threads);
+  ms.rangePyramid = msSince(start);
+  start = Clock::now();
+  reduceColorPyramid(m.levels, m.colors.data(), threads);
+  ms.colorPyramid = msSince(start);
   return ms;
 }
 
@@ -492,5 +500,9 @@ const std::vector<float>& NativeMirrorTrace::distance() const { return impl_->di
 const std::vector<float>& NativeMirrorTrace::packetHitPoints() const { return impl_->packetHits; }
 const std::vector<float>& NativeMirrorTrace::linearHitPoints() const { return impl_->linearHits; }
 long long NativeMirrorTrace::rays() const { return impl_->rays; }
+const std::vector<float>& NativeMirrorTrace::hzb() const { return impl_->hzb; }
+const std::vector<glm::vec4>& NativeMirrorTrace::planes() const { return impl_->planes; }
+const std::vector<glm::vec2>& NativeMirrorTrace::rangePyramid() const { return impl_->range; }
+const std::vector<glm::vec4>& NativeMirrorTrace::colorPyramid() const { return impl_->colors; }
 
 }  // namespace ssrcl::bench

@@ -6,8 +6,10 @@
 // implementation whose hits the OpenCL ones must match. From the same setup, the min-max packet
 // trace (bench/packet_hiz_trace, depth alone, AVX-512) is the roofline: what these cores can
 // trace (bench/ssrcl_roofline, bench/ssrcl_trace_roofline, docs/BENCHMARKS.md, native roofline).
+#include <glm/glm.hpp>
 #include <vector>
 
+#include "native_frame_stages.hpp"
 #include "packet_hiz_trace.hpp"
 
 #include "ssrcl/camera.hpp"
@@ -23,6 +25,7 @@ TraceSettings nativeMirrorSettings();
 struct NativeStageMs {
   double setup = 0, hzb = 0, trace = 0;
 };
+
 
 // Per-pixel hit distances of two passes (0 where no hit): the pixels either hits, and of those
 // the ones where only one hits or the distances differ by more than 1%.
@@ -52,6 +55,10 @@ class NativeMirrorTrace {
 
   // One timed run of the three stages on `threads` threads.
   NativeStageMs run(int threads);
+  // One timed run of the stages before the trace on `threads` threads: setup, the HZB, the
+  // adaptive thickness (bench/native_frame_stages; only with settings.thicknessModel Adaptive,
+  // else 0 ms), the range pyramid and the colour pyramid.
+  FrameStageMs runFrame(int threads);
   // After run(): the mirror rays again by the min-max packet trace (bench/packet_hiz_trace: its
   // own ray generation, hit test on depth alone, thickness settings.thicknessRelative of the
   // depth), on `threads` threads; the milliseconds of ray generation and trace (the pyramid is
@@ -72,6 +79,13 @@ class NativeMirrorTrace {
   // Per pixel 3 floats, after runPackets() / runLinearMarch(): the hit's screen x, y and 1/z; -1 where none.
   const std::vector<float>& packetHitPoints() const;
   const std::vector<float>& linearHitPoints() const;
+  // After run() / runFrame(): the HZB (every level), the surface planes (kernels/surface_plane.cl;
+  // the adaptive thickness applied after runFrame()); after runFrame(): the range pyramid and the
+  // colour pyramid, every level, in the HZB's layout.
+  const std::vector<float>& hzb() const;
+  const std::vector<glm::vec4>& planes() const;
+  const std::vector<glm::vec2>& rangePyramid() const;
+  const std::vector<glm::vec4>& colorPyramid() const;
   long long rays() const;
 
  private:

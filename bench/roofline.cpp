@@ -5,6 +5,7 @@
 #include <thread>
 
 #include "device_copy_time.hpp"
+#include "device_frame_stages.hpp"
 #include "native_mirror_trace.hpp"
 #include "packet_hiz_trace.hpp"
 #include "ssrcl/pipeline.hpp"
@@ -18,34 +19,45 @@ RooflineResult runRoofline(const Device& device, const BenchInput& input, int re
   p.settings() = settings;
   p.commit();
   bench::NativeMirrorTrace native(input.gbuffer, input.camera, settings);
+  // The stages before the trace, each timed apart, with the adaptive thickness model (the
+  // default; the trace's rays above take the constant one, which has no stage of its own).
+  TraceSettings frameSettings = settings;
+  frameSettings.thicknessModel = ThicknessModel::Adaptive;
+  bench::DeviceFrameStages deviceFrame(device, input.gbuffer, input.camera, frameSettings);
+  bench::NativeMirrorTrace nativeFrame(input.gbuffer, input.camera, frameSettings);
   bench::DeviceCopyTime depthCopy(device.info(), size_t(input.camera.width) * input.camera.height * sizeof(float));
   RooflineResult r;
   r.input = input.name;
   r.width = input.camera.width;
   r.height = input.camera.height;
   r.threads = int(std::max(1u, std::thread::hardware_concurrency()));
-  r.stages = {"setup", "hzb", "trace"};
+  r.stages = {"setup", "hzb", "thickness", "range pyramid", "colour pyramid", "trace"};
+  const size_t stages = r.stages.size();
   p.execute();  // warm-up: kernel compilation, first touch
   native.run(r.threads);
-  std::vector<std::vector<double>> cl(3), nat(3);
+  deviceFrame.run();
+  nativeFrame.runFrame(r.threads);
+  const auto frameMs = [](const bench::FrameStageMs& f) {
+    return std::vector<double>{f.setup, f.hzb, f.thickness, f.rangePyramid, f.colorPyramid};
+  };
+  std::vector<std::vector<double>> cl(stages), nat(stages);
   std::vector<double> copy, packets;
   r.packets = bench::packetTraceSupported();
   // Alternating, so both see the same load on a shared machine.
   for (int k = 0; k < repetitions; ++k) {
-    p.execute();
-    for (size_t s = 0; s < 3; ++s) {
-      const auto& ms = p.stageTimes().ms;
-      const auto it = ms.find(r.stages[s]);
-      cl[s].push_back(it == ms.end() ? 0.0 : it->second);
+    const std::vector<double> clFrame = frameMs(deviceFrame.run()), natFrame = frameMs(nativeFrame.runFrame(r.threads));
+    for (size_t s = 0; s < clFrame.size(); ++s) {
+      cl[s].push_back(clFrame[s]);
+      nat[s].push_back(natFrame[s]);
     }
-    const bench::NativeStageMs n = native.run(r.threads);
-    nat[0].push_back(n.setup);
-    nat[1].push_back(n.hzb);
-    nat[2].push_back(n.trace);
+    p.execute();
+    const auto& ms = p.stageTimes().ms;
+    cl[stages - 1].push_back(ms.count("trace") ? ms.at("trace") : 0.0);
+    nat[stages - 1].push_back(native.run(r.threads).trace);
     if (r.packets) packets.push_back(native.runPackets(r.threads));
     copy.push_back(depthCopy.run());
   }
-  for (size_t s = 0; s < 3; ++s) {
+  for (size_t s = 0; s < stages; ++s) {
     r.opencl.push_back(stageStats(cl[s]));
     r.native.push_back(stageStats(nat[s]));
   }
@@ -68,13 +80,14 @@ double agreedPercent(const bench::HitAgreement& h) {
 }  // namespace
 
 void printRoofline(std::ostream& out, const std::vector<RooflineResult>& results) {
-  out << "\nNative roofline (mirror rays of every reflecting pixel, constant thickness, Hi-Z; median ms):\n";
+  out << "\nNative roofline (median ms; the stages before the trace each apart, with the adaptive thickness;\n"
+      << "the trace: mirror rays of every reflecting pixel, constant thickness, Hi-Z):\n";
   for (const RooflineResult& r : results) {
     out << "  " << r.input << " " << r.width << "x" << r.height << ", " << r.rays << " rays, native on "
         << r.threads << " threads\n";
     for (size_t s = 0; s < r.stages.size(); ++s) {
       const double cl = r.opencl[s].medianMs, nat = r.native[s].medianMs;
-      out << "    " << std::left << std::setw(6) << r.stages[s] << std::right << std::fixed << std::setprecision(2)
+      out << "    " << std::left << std::setw(14) << r.stages[s] << std::right << std::fixed << std::setprecision(2)
           << "  OpenCL " << std::setw(9) << cl << "  native " << std::setw(9) << nat << "  OpenCL / native "
           << std::setprecision(2) << (nat > 0 ? cl / nat : 0.0);
       if (r.stages[s] == "hzb")
@@ -87,7 +100,7 @@ void printRoofline(std::ostream& out, const std::vector<RooflineResult>& results
     }
     out << "    hits agree on " << std::setprecision(4) << agreedPercent(r.hits) << "% of " << r.hits.hitPixels
         << " pixels hit by either\n";
-    const double cl = r.opencl[2].medianMs, scalar = r.native[2].medianMs, simd = r.packetTrace.medianMs;
+    const double cl = r.opencl.back().medianMs, scalar = r.native.back().medianMs, simd = r.packetTrace.medianMs;
     if (!r.packets) {
       out << "    SIMD native: not run (needs AVX-512)\n";
       continue;

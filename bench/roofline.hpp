@@ -11,13 +11,15 @@
 namespace ssrcl::cli {
 
 // The OpenCL mirror pass against its native C++ roofline (bench/native_mirror_trace): the same
-// rays (every reflecting pixel's mirror ray, constant thickness, Hi-Z), timed alternately in one
-// run, and how many pixels' hits agree.
+// rays (every reflecting pixel's mirror ray, constant thickness, Hi-Z), and the stages before the
+// trace (bench/native_frame_stages), timed alternately in one run, and how many pixels' hits agree.
 struct RooflineResult {
   std::string input;
   int width = 0, height = 0, threads = 0;
   long long rays = 0;
-  std::vector<std::string> stages;           // setup, hzb, trace
+  // setup, hzb, thickness, range pyramid, colour pyramid (bench/device_frame_stages against
+  // bench/native_frame_stages), trace (the pipeline's stage)
+  std::vector<std::string> stages;
   std::vector<StageStats> opencl, native;    // per stage, milliseconds
   StageStats depthCopy;                      // clEnqueueCopyBuffer of the depth buffer, same run
   bench::HitAgreement hits;

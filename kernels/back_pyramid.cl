@@ -13,14 +13,45 @@
 // the last one left off, on the boundary within rounding.
 #define SSRCL_BACK_MARGIN 0.05f
 
-// The far end of the slab dot(x, n) in [c - 1, c] on the viewing line through pixel position
-// `corner`; *sign gets 1 or 2 as the line runs with or against n, 3 along it.
-inline float slab_far_end(float16 inv_proj, int2 size, float2 corner, float3 n, float c, int* sign) {
-  float3 origin, step;
-  view_line(inv_proj, pixel_to_ndc(corner, size), &origin, &step);
-  float along = dot(step, n), from = dot(origin, n);
-  *sign |= along > 0.0f ? 1 : along < 0.0f ? 2 : 3;
-  return fmax((c - from) / along, (c - 1.0f - from) / along) - origin.z;  // planar depth (view_line)
+// Eight pixels of a row to a work-item, one to a float8 lane: PoCL's work-group vectoriser does
+// not run on this kernel (its loop vectoriser refuses the float3 arithmetic, "instruction return
+// type cannot be vectorized"; written on scalars, the work-item loop is still left scalar), and a
+// work-item at a time the twenty divisions of a pixel's four corners were most of the stage.
+// The lanes round as the per-pixel form did, bit for bit: the same operations in the same order,
+// dot products as PoCL's dot() rounds them (dot_lanes, dot4_lanes: no fused multiply-add).
+#define SSRCL_BACK_LANES 8
+
+// dot(m row, (ndc_x, ndc_y, 0, 1)) of each lane, as common.cl mat_mul's dot of two float4 rounds it.
+inline float8 dot4_lanes(float4 row, float8 ndc_x, float8 ndc_y) {
+#pragma OPENCL FP_CONTRACT OFF
+  float8 x = row.x * ndc_x, y = row.y * ndc_y, z = (float8)(row.z * 0.0f), w = (float8)(row.w * 1.0f);
+  return ((x + y) + z) + w;
+}
+
+// The far end of the slab dot(x, n) in [c - 1, c] on the viewing line through each lane's pixel
+// position (px, py) (common.cl view_line); *sign gets 1 or 2 as the line runs with or against n,
+// 3 along it.
+inline float8 slab_far_end(float16 inv_proj, int2 size, float8 px, float8 py, float8 nx, float8 ny, float8 nz,
+                           float8 c, int8* sign) {
+  const float8 ndc_x = 2.0f * px / (float)size.x - 1.0f, ndc_y = 1.0f - 2.0f * py / (float)size.y;
+  const float8 ax = dot4_lanes(inv_proj.s0123, ndc_x, ndc_y), ay = dot4_lanes(inv_proj.s4567, ndc_x, ndc_y);
+  const float8 az = dot4_lanes(inv_proj.s89ab, ndc_x, ndc_y), aw = dot4_lanes(inv_proj.scdef, ndc_x, ndc_y);
+  const float4 e = (float4)(inv_proj.s2, inv_proj.s6, inv_proj.sa, inv_proj.se);
+  const float8 vx = ax * e.w - e.x * aw, vy = ay * e.w - e.y * aw, vz = az * e.w - e.z * aw;
+  const float8 sx = vx / -vz, sy = vy / -vz, sz = vz / -vz;
+  float8 ox, oy, oz;
+  if (e.w != 0.0f) {
+    ox = (float8)(e.x / e.w);
+    oy = (float8)(e.y / e.w);
+    oz = (float8)(e.z / e.w);
+  } else {
+    ox = ax / aw;
+    oy = ay / aw;
+    oz = az / aw;
+  }
+  const float8 along = dot_lanes(sx, sy, sz, nx, ny, nz), from = dot_lanes(ox, oy, oz, nx, ny, nz);
+  *sign |= select(select((int8)(3), (int8)(2), along < 0.0f), (int8)(1), along > 0.0f);
+  return fmax((c - from) / along, (c - 1.0f - from) / along) - oz;  // planar depth (view_line)
 }
 
 // With `guessed`, a pixel whose back is known also catches rays within the thickness model's guess
@@ -28,24 +59,39 @@ inline float slab_far_end(float16 inv_proj, int2 size, float2 corner, float3 n, 
 __kernel void back_level0(FrameConstants frame, __global const float* hzb, __global const float4* planes,
                           __global const float* guess, int guessed, __global float2* range) {
   const int2 size = (int2)(frame.width, frame.height);
-  int x = get_global_id(0), y = get_global_id(1);
-  if (x >= size.x || y >= size.y) return;
+  const int x0 = SSRCL_BACK_LANES * (int)get_global_id(0), y = get_global_id(1);
+  if (x0 >= size.x || y >= size.y) return;
   const float16 inv_proj = vload16(0, frame.inv_proj);
-  float4 plane = planes[y * size.x + x];
-  if (guessed) plane /= fmax(guess[y * size.x + x], 1.0f);  // records are over the thickness
-  float far_end = -INFINITY;  // SSRCL_NO_PLANE: nothing to hit
-  if (plane.w != -INFINITY) {
-    int sign = 0;
-    const float lo = -SSRCL_BACK_MARGIN, hi = 1.0f + SSRCL_BACK_MARGIN;
-    far_end = fmax(fmax(slab_far_end(inv_proj, size, (float2)(x + lo, y + lo), plane.xyz, plane.w, &sign),
-                        slab_far_end(inv_proj, size, (float2)(x + hi, y + lo), plane.xyz, plane.w, &sign)),
-                   fmax(slab_far_end(inv_proj, size, (float2)(x + lo, y + hi), plane.xyz, plane.w, &sign),
-                        slab_far_end(inv_proj, size, (float2)(x + hi, y + hi), plane.xyz, plane.w, &sign)));
-    // A thousandth more: the trace compares its own rounded depths with these.
-    far_end = (sign == 1 || sign == 2) && isfinite(far_end) ? far_end + 1e-3f * fabs(far_end) : INFINITY;
+  const int8 lane = (int8)(0, 1, 2, 3, 4, 5, 6, 7);
+  // Lanes past the row's end repeat its last pixel (level 0 at offset 0, rows of the frame's width).
+  const int8 slot = y * size.x + min(x0 + lane, size.x - 1);
+  RecordLanes plane = record_lanes(planes, slot);
+  if (guessed) {  // records are over the thickness
+    const float8 g = fmax(gather8(guess, slot), 1.0f);
+    plane.x /= g;
+    plane.y /= g;
+    plane.z /= g;
+    plane.w /= g;
   }
-  const int i = y * size.x + x;  // level 0 at offset 0, rows of the frame's width
-  range[i] = (float2)(hzb[i], far_end);
+  const float8 px = convert_float8(x0 + lane), py = (float8)((float)y);
+  int8 sign = 0;
+  const float lo = -SSRCL_BACK_MARGIN, hi = 1.0f + SSRCL_BACK_MARGIN;
+  float8 far_end =
+      fmax(fmax(slab_far_end(inv_proj, size, px + lo, py + lo, plane.x, plane.y, plane.z, plane.w, &sign),
+                slab_far_end(inv_proj, size, px + hi, py + lo, plane.x, plane.y, plane.z, plane.w, &sign)),
+           fmax(slab_far_end(inv_proj, size, px + lo, py + hi, plane.x, plane.y, plane.z, plane.w, &sign),
+                slab_far_end(inv_proj, size, px + hi, py + hi, plane.x, plane.y, plane.z, plane.w, &sign)));
+  // A thousandth more: the trace compares its own rounded depths with these.
+  far_end = select((float8)(INFINITY), far_end + 1e-3f * fabs(far_end), (sign == 1 || sign == 2) && isfinite(far_end));
+  far_end = select(far_end, (float8)(-INFINITY), plane.w == -INFINITY);  // SSRCL_NO_PLANE: nothing to hit
+  const int i = y * size.x + x0;
+  if (x0 + SSRCL_BACK_LANES <= size.x) {
+    vstore16((float16)(vload8(0, hzb + i), far_end).s08192a3b4c5d6e7f, 0, (__global float*)(range + i));
+    return;
+  }
+  float values[SSRCL_BACK_LANES];
+  vstore8(far_end, 0, values);
+  for (int k = 0; k < size.x - x0; ++k) range[i + k] = (float2)(hzb[i + k], values[k]);
 }
 
 // One reduction step of the range pyramid: x as the HZB's (depth_reduce, so equal to it), y the

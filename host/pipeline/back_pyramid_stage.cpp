@@ -30,8 +30,10 @@ void BackPyramidStage::bind(const FrameResources& resources) {
 void BackPyramidStage::enqueue(cl::CommandQueue& q, const FrameConstants& frame, StageEvents& events) {
   if (!used_) return;
   level0_.setArg(0, frame);
+  // A work-item per 8 pixels of a row (kernels/back_pyramid.cl SSRCL_BACK_LANES).
+  const int items = (frame_.width + 7) / 8;
   q.enqueueNDRangeKernel(level0_, cl::NullRange,
-                         cl::NDRange(roundUp(frame_.width, SSRCL_TILE), roundUp(frame_.height, SSRCL_TILE)),
+                         cl::NDRange(roundUp(items, SSRCL_TILE), roundUp(frame_.height, SSRCL_TILE)),
                          cl::NDRange(SSRCL_TILE, SSRCL_TILE), nullptr, newEvent(events, "hzb"));
   reducePyramid(q, reduce_, frame_, events, "hzb");
 }
