@@ -13,6 +13,9 @@
 // shows there (the object has moved). Weights fall with the hit-distance mismatch. Both tests
 // widen with roughness: a rough lobe's hit distance is a mean over hits spread across the lobe,
 // which moves with the view, and its hit (taken along the lobe's centre) need not lie on a surface.
+// Geometry cannot see a light that changes over the window: a tap is also refused where the
+// neighbour's radiance around it (the mean of a 5x5 neighbourhood) differs from the frame's own
+// around the pixel by more than both neighbourhoods' spread explains (their noise and texture).
 #include <optional>
 #include <vector>
 
@@ -40,6 +43,10 @@ struct TemporalSettings {
   // (docs/BENCHMARKS.md "Shots"), a rough floor's hit distance is off by more than 20% between
   // views for most of its pixels, and its hit lies in front of the surface the neighbour shows.
   float roughnessSpread = 2.0f;
+  // Radiance test: refused where a colour channel's neighbourhood means differ by more than
+  // radianceSigmas times the root of their summed variances plus radianceShare of the larger mean.
+  float radianceSigmas = 1.5f;
+  float radianceShare = 0.1f;
   float mirrorRoughness = 0.02f;           // pixels at or below keep their own pass (sharp, no noise)
   std::optional<float> constantRoughness;  // every pixel's roughness where frames have no image
 };
