@@ -135,20 +135,27 @@ TEST(TemporalBlend, HitDistanceToleranceWidensWithRoughness) {
 
 // The ceiling's light switches on at frame 4 of 8 (from 5% of its brightness): geometry agrees
 // in every frame, only radiance tells the frames apart. Blended over +-3 frames, each frame must
-// keep its own light (no dark history after the switch, no light before it) and still average
-// the noise of the frames lit as it is.
+// keep its own light (no dark history after the switch, no light before it): its error as small
+// as the blend of only the frames lit as it is, and under its own noise.
 TEST(TemporalBlend, RefusesNeighboursLitOtherwise) {
   constexpr int kSwitch = 4, kFrames = 8, kK = 3;
   std::vector<AnalyticFrame> frames;
   for (int f = 0; f < kFrames; ++f) frames.push_back(makeFrame(f, 0.2, kCeiling, 0.3f, f < kSwitch ? 0.05 : 1.0));
   for (int c = 0; c < kFrames; ++c) {
-    const int first = std::max(0, c - kK), last = std::min(kFrames - 1, c + kK);
-    const std::vector<AnalyticFrame> span(frames.begin() + first, frames.begin() + last + 1);
+    const int first = std::max(c < kSwitch ? 0 : kSwitch, c - kK);
+    const int last = std::min(c < kSwitch ? kSwitch - 1 : kFrames - 1, c + kK);
+    const std::vector<AnalyticFrame> alike(frames.begin() + first, frames.begin() + last + 1);
     const double own = rmsError(frames[c].reflection, frames[c]);
-    const double blend = rmsError(ssrcl::temporalBlend(window(span), size_t(c - first), {}), frames[c]);
-    std::cout << "frame " << c << ": RMS error own " << own << ", blended " << blend << "\n";
-    // At least 4 frames lit alike in every window (the frame and 3 on one side): noise / 2 where
-    // all are found.
+    const double clean = rmsError(ssrcl::temporalBlend(window(alike), size_t(c - first), {}), frames[c]);
+    const int from = std::max(0, c - kK), to = std::min(kFrames - 1, c + kK);
+    const std::vector<AnalyticFrame> span(frames.begin() + from, frames.begin() + to + 1);
+    const double blend = rmsError(ssrcl::temporalBlend(window(span), size_t(c - from), {}), frames[c]);
+    std::cout << "frame " << c << ": RMS error own " << own << ", blended " << blend << ", blended over the frames lit alike "
+              << clean << "\n";
+    // Without the radiance test frames 1-6 take the other light (errors 0.10-0.21); with 3 sigmas
+    // (radianceSigmas) instead of 1.5, the upper floor, whose neighbourhoods span much texture,
+    // still does (0.05-0.11).
+    EXPECT_LT(blend, 1.1 * clean) << "frame " << c;
     EXPECT_LT(blend, 0.75 * own) << "frame " << c;
   }
 }

@@ -104,7 +104,7 @@ struct RadianceStats {
     const size_t i = (size_t(y) * width + x) * 3, j = (size_t(oy) * o.width + ox) * 3;
     for (int c = 0; c < 3; ++c) {
       const double a = mean[i + c], b = o.mean[j + c];
-      const double tolerance = s.radianceSigmas * std::sqrt(variance[i + c] + o.variance[j + c]) +
+      const double tolerance = s.radianceSigmas * std::sqrt(2.0 * std::min(variance[i + c], o.variance[j + c])) +
                                s.radianceShare * std::max(std::abs(a), std::abs(b));
       if (!(std::abs(a - b) <= tolerance)) return false;
     }

@@ -15,7 +15,11 @@
 // which moves with the view, and its hit (taken along the lobe's centre) need not lie on a surface.
 // Geometry cannot see a light that changes over the window: a tap is also refused where the
 // neighbour's radiance around it (the mean of a 5x5 neighbourhood) differs from the frame's own
-// around the pixel by more than both neighbourhoods' spread explains (their noise and texture).
+// around the pixel by more than noise and a ratio allow. The noise is the smaller of the two
+// neighbourhoods' spreads: a light's change scales the texture's spread with it, which would
+// otherwise hide the change on a textured reflection. The ratio: a camera move's views of one
+// reflection disagree locally by up to 2x beyond their noise (the view-dependent errors that the
+// blend averages away), so a light that changes by less is averaged too.
 #include <optional>
 #include <vector>
 
@@ -44,9 +48,11 @@ struct TemporalSettings {
   // views for most of its pixels, and its hit lies in front of the surface the neighbour shows.
   float roughnessSpread = 2.0f;
   // Radiance test: refused where a colour channel's neighbourhood means differ by more than
-  // radianceSigmas times the root of their summed variances plus radianceShare of the larger mean.
+  // radianceSigmas times sqrt(2 x the smaller of their variances) plus radianceShare of the larger
+  // mean. Measured on Cycles shots (docs/BENCHMARKS.md "Shots"): a share of 0.1 refused much of
+  // what the blend gains on living_truck; 1.5 sigmas, not 3, keeps the analytic light switch out.
   float radianceSigmas = 1.5f;
-  float radianceShare = 0.1f;
+  float radianceShare = 0.5f;
   float mirrorRoughness = 0.02f;           // pixels at or below keep their own pass (sharp, no noise)
   std::optional<float> constantRoughness;  // every pixel's roughness where frames have no image
 };
