@@ -1,5 +1,6 @@
 #include "shot_breakdown.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
 
@@ -13,7 +14,7 @@ namespace {
 constexpr double kEdgeBand = 0.08;
 
 struct Pool {
-  double se = 0, seReference = 0;
+  double se = 0, seReference = 0, sePass = 0;
   size_t pixels = 0;
 };
 
@@ -46,11 +47,15 @@ void printBreakdown(std::ostream& out, const std::string& label, const std::vect
   constexpr int kClasses = 6;
   Pool pools[kClasses];
   double peak = 0;
+  // The references with their values zeroed: the pass's own change along the surface.
+  std::vector<test::CyclesReference> blank = refs;
+  for (test::CyclesReference& r : blank) std::fill(r.cycles.begin(), r.cycles.end(), 0.0);
   for (size_t t = 1; t < refs.size(); ++t) {
-    std::vector<double> se, seReference;
+    std::vector<double> se, seReference, sePass;
     test::temporalError(refs[t - 1], passes[t - 1], refs[t], passes[t], &se);
     const Image zeros(passes[t].width, passes[t].height, passes[t].channels);
     test::temporalError(refs[t - 1], zeros, refs[t], zeros, &seReference);
+    test::temporalError(blank[t - 1], passes[t - 1], blank[t], passes[t], &sePass);
     peak += refs[t].peak / double(refs.size() - 1);
     for (size_t i = 0; i < se.size(); ++i) {
       if (std::isnan(se[i])) continue;
@@ -64,18 +69,20 @@ void printBreakdown(std::ostream& out, const std::string& label, const std::vect
       }
       const bool in[kClasses] = {true, (c & kMiss) != 0, !(c & kMiss), (c & kEdge) != 0, !(c & kEdge), unblended};
       for (int k = 0; k < kClasses; ++k)
-        if (in[k]) pools[k].se += se[i], pools[k].seReference += seReference[i], ++pools[k].pixels;
+        if (in[k]) pools[k].se += se[i], pools[k].seReference += seReference[i], pools[k].sePass += sePass[i], ++pools[k].pixels;
     }
   }
   const auto db = [&](double se, size_t n) { return n ? 20 * std::log10(peak / std::sqrt(se / (3.0 * double(n)))) : NAN; };
-  out << label << ": class, share of pixels, share of TE^2, tPSNR there, the references' own change there (dB)\n"
+  out << label << ": class, share of pixels, share of TE^2, tPSNR there; the references' change there and the "
+                   "pass's, as tPSNR (dB)\n"
       << std::fixed << std::setprecision(2);
   for (int k = 0; k < kClasses; ++k) {
     if (k == 5 && !alone) continue;
     const Pool& p = pools[k];
     out << "  " << std::left << std::setw(12) << names[k] << std::right << std::setw(8)
         << 100.0 * double(p.pixels) / double(pools[0].pixels) << "%" << std::setw(8) << 100.0 * p.se / pools[0].se
-        << "%" << std::setw(8) << db(p.se, p.pixels) << std::setw(8) << db(p.seReference, p.pixels) << "\n";
+        << "%" << std::setw(8) << db(p.se, p.pixels) << std::setw(8) << db(p.seReference, p.pixels) << std::setw(8)
+        << db(p.sePass, p.pixels) << "\n";
   }
 }
 

@@ -4,7 +4,8 @@
 // environment fills), whether it lies in the band along the frame's edges (rays that leave the
 // screen), and, for a blended pass, whether the blend took no neighbour there (the pass equals
 // the frame traced alone with the same seed). Each class also gets the references' own change
-// along the surface (their noise, and what truly changes), the TE a pass of zeros would have.
+// along the surface (their noise, and what truly changes: the TE a pass of zeros would have) and
+// the pass's own change (its TE against references of zeros).
 #include <cstdint>
 #include <ostream>
 #include <string>
@@ -19,8 +20,8 @@ namespace ssrcl::bench {
 enum PixelClass : uint8_t { kMiss = 1, kEdge = 2 };
 std::vector<std::vector<uint8_t>> classifyPixels(const std::vector<std::string>& mediumPasses);
 
-// One line per class: share of the pixels, share of TE^2, tPSNR of the pass over those pixels
-// and of the references' own change there. `alone`: the frames traced alone (nullptr: no
+// One line per class: share of the pixels, share of TE^2, tPSNR of the pass over those pixels,
+// of the references' own change there and of the pass's own change. `alone`: the frames traced alone (nullptr: no
 // "unblended" class).
 void printBreakdown(std::ostream& out, const std::string& label, const std::vector<test::CyclesReference>& refs,
                     const std::vector<Image>& passes, const std::vector<std::vector<uint8_t>>& classes,
