@@ -43,8 +43,8 @@ std::vector<std::vector<uint8_t>> classifyPixels(const std::vector<std::string>&
 void printBreakdown(std::ostream& out, const std::string& label, const std::vector<test::CyclesReference>& refs,
                     const std::vector<Image>& passes, const std::vector<std::vector<uint8_t>>& classes,
                     const std::vector<Image>* alone) {
-  const char* names[] = {"all", "environment", "hit", "edge band", "interior", "unblended"};
-  constexpr int kClasses = 6;
+  const char* names[] = {"all", "environment", "hit", "edge band", "interior", "unblended", "unbl. env."};
+  constexpr int kClasses = 7;
   Pool pools[kClasses];
   double peak = 0;
   // The references with their values zeroed: the pass's own change along the surface.
@@ -67,17 +67,22 @@ void printBreakdown(std::ostream& out, const std::string& label, const std::vect
           unblended = unblended && passes[t].data[size_t(passes[t].channels) * i + size_t(ch)] ==
                                        (*alone)[t].data[size_t((*alone)[t].channels) * i + size_t(ch)];
       }
-      const bool in[kClasses] = {true, (c & kMiss) != 0, !(c & kMiss), (c & kEdge) != 0, !(c & kEdge), unblended};
+      const bool in[kClasses] = {true,      (c & kMiss) != 0,        !(c & kMiss), (c & kEdge) != 0, !(c & kEdge),
+                                 unblended, unblended && (c & kMiss)};
       for (int k = 0; k < kClasses; ++k)
-        if (in[k]) pools[k].se += se[i], pools[k].seReference += seReference[i], pools[k].sePass += sePass[i], ++pools[k].pixels;
+        if (in[k])
+          pools[k].se += se[i], pools[k].seReference += seReference[i], pools[k].sePass += sePass[i], ++pools[k].pixels;
     }
   }
-  const auto db = [&](double se, size_t n) { return n ? 20 * std::log10(peak / std::sqrt(se / (3.0 * double(n)))) : NAN; };
-  out << label << ": class, share of pixels, share of TE^2, tPSNR there; the references' change there and the "
-                   "pass's, as tPSNR (dB)\n"
+  const auto db = [&](double se, size_t n) {
+    return n ? 20 * std::log10(peak / std::sqrt(se / (3.0 * double(n)))) : NAN;
+  };
+  out << label
+      << ": class, share of pixels, share of TE^2, tPSNR there; the references' change there and the "
+         "pass's, as tPSNR (dB)\n"
       << std::fixed << std::setprecision(2);
   for (int k = 0; k < kClasses; ++k) {
-    if (k == 5 && !alone) continue;
+    if (k >= 5 && !alone) continue;
     const Pool& p = pools[k];
     out << "  " << std::left << std::setw(12) << names[k] << std::right << std::setw(8)
         << 100.0 * double(p.pixels) / double(pools[0].pixels) << "%" << std::setw(8) << 100.0 * p.se / pools[0].se

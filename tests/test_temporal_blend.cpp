@@ -150,8 +150,8 @@ TEST(TemporalBlend, RefusesNeighboursLitOtherwise) {
     const int from = std::max(0, c - kK), to = std::min(kFrames - 1, c + kK);
     const std::vector<AnalyticFrame> span(frames.begin() + from, frames.begin() + to + 1);
     const double blend = rmsError(ssrcl::temporalBlend(window(span), size_t(c - from), {}), frames[c]);
-    std::cout << "frame " << c << ": RMS error own " << own << ", blended " << blend << ", blended over the frames lit alike "
-              << clean << "\n";
+    std::cout << "frame " << c << ": RMS error own " << own << ", blended " << blend
+              << ", blended over the frames lit alike " << clean << "\n";
     // Without the radiance test frames 1-6 take the other light (errors 0.10-0.21); with 3 sigmas
     // (radianceSigmas) instead of 1.5, the upper floor, whose neighbourhoods span much texture,
     // still does (0.05-0.11).
