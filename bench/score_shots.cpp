@@ -8,6 +8,8 @@
 //   ssrcl_score_shots --shots out/shots --passes out/shot-passes --configs medium,high,eevee
 //       (config C of shot S: <passes>/<C>/<S>/<S>.NNNN.refl.exr and the report <passes>/<C>/<S>.json;
 //        "eevee": <shots>/<S>/eevee/<S>.NNNN.exr)
+//   --breakdown: where each configuration's temporal error lies (bench/shot_breakdown.hpp; needs
+//   the "medium" passes, and "medium-frameseeds" for the blend's unblended pixels)
 #include <CLI/CLI.hpp>
 #include <filesystem>
 #include <fstream>
@@ -16,6 +18,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "shot_breakdown.hpp"
 #include "support/cycles_reference.hpp"
 #include "support/shot_metric.hpp"
 
@@ -64,6 +67,8 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--shot", shotList, "Only these shots (comma-separated)");
   app.add_option("--json", jsonPath, "Write every figure as JSON");
+  bool breakdown = false;
+  app.add_flag("--breakdown", breakdown, "Print where each configuration's temporal error lies");
   CLI11_PARSE(app, argc, argv);
   try {
     std::ifstream manifest(shotsDir + "/shots.json");
@@ -97,22 +102,36 @@ int main(int argc, char** argv) {
         floorP[s] = noise.tpsnr + 20 * std::log10(std::sqrt(2.0));  // one render's noise, sigma, not sqrt(2) sigma
         json["shots"][shots[s]]["noise_floor"] = {{"tpsnr_db", floorT[s]}, {"psnr_db", floorP[s]}};
       }
-      for (size_t c = 0; c < configs.size(); ++c) {
-        const bool eevee = configs[c] == "eevee";
+      // A configuration's passes of this shot, or none where a frame's is missing.
+      const auto passesOf = [&](const std::string& config, std::vector<std::string>* paths = nullptr) {
         std::vector<ssrcl::Image> passes;
-        bool complete = true;
         for (const std::string& f : frames) {
           const std::string stem = fs::path(f).stem().string();
-          const fs::path path = eevee ? dir / "eevee" / (stem + ".exr")
-                                      : fs::path(passesDir) / configs[c] / shots[s] / (stem + ".refl.exr");
-          if (!fs::exists(path)) {
-            complete = false;
-            break;
-          }
-          passes.push_back(eevee ? ssrcl::test::eeveeSpecular(path.string(), true)
-                                 : ssrcl::test::readReflectionPass(path.string()));
+          const fs::path path = config == "eevee" ? dir / "eevee" / (stem + ".exr")
+                                                  : fs::path(passesDir) / config / shots[s] / (stem + ".refl.exr");
+          if (!fs::exists(path)) return std::vector<ssrcl::Image>{};
+          if (paths) paths->push_back(path.string());
+          passes.push_back(config == "eevee" ? ssrcl::test::eeveeSpecular(path.string(), true)
+                                             : ssrcl::test::readReflectionPass(path.string()));
         }
-        if (!complete) continue;
+        return passes;
+      };
+      std::vector<std::vector<uint8_t>> classes;
+      std::vector<ssrcl::Image> alone;
+      if (breakdown) {
+        std::vector<std::string> medium;
+        if (passesOf("medium", &medium).empty())
+          throw std::runtime_error("--breakdown: no medium passes of " + shots[s]);
+        classes = ssrcl::bench::classifyPixels(medium);
+        alone = passesOf("medium-frameseeds");
+      }
+      for (size_t c = 0; c < configs.size(); ++c) {
+        const bool eevee = configs[c] == "eevee";
+        const std::vector<ssrcl::Image> passes = passesOf(configs[c]);
+        if (passes.empty()) continue;
+        if (breakdown)
+          ssrcl::bench::printBreakdown(std::cerr, shots[s] + " " + configs[c], refs, passes, classes,
+                                       configs[c].rfind("medium-t", 0) == 0 && !alone.empty() ? &alone : nullptr);
         ShotScore& score = scores[c][s];
         nlohmann::json perFrame = nlohmann::json::array();
         for (size_t t = 0; t < frames.size(); ++t) {

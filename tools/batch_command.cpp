@@ -178,7 +178,7 @@ Action addBatchCommand(CLI::App& app) {
   cmd->add_option("--temporal", o->temporal,
                   "K: each frame's pass is blended with those of frames f-K..f+K, each traced with its own seed and "
                   "read where it shows the same reflection (reprojected at the reflected point; refused where "
-                  "depth, normals or hit distance disagree); 0: each frame alone")
+                  "depth, normals, hit distance or radiance disagree); 0: each frame alone")
       ->capture_default_str()
       ->check(CLI::Range(0, 64));
   cmd->add_option("--shard", o->shard,

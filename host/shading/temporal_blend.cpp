@@ -42,6 +42,76 @@ struct FrameGeometry {
   }
 };
 
+// Half the side of the neighbourhood whose radiance a tap is compared by: 5x5, enough pixels for
+// a spread that a filtered pass's blotchy noise does not underestimate.
+constexpr int kRadianceRadius = 2;
+
+// Rows [0, h) split over threads: every row is computed alone, so the result is the same for any split.
+template <typename RowFn>
+void forRows(int h, const RowFn& rows) {
+  const int threads = int(std::clamp(std::thread::hardware_concurrency(), 1u, 16u));
+  std::vector<std::thread> pool;
+  for (int t = 0; t < threads; ++t) pool.emplace_back(rows, h * t / threads, h * (t + 1) / threads);
+  for (std::thread& t : pool) t.join();
+}
+
+// Mean and variance of each colour channel of a frame's pass over the surface pixels of each
+// pixel's neighbourhood (separable sums: a row pass, then a column pass).
+struct RadianceStats {
+  int width = 0;
+  std::vector<double> mean, variance;  // 3 a pixel
+
+  explicit RadianceStats(const TemporalFrame& f) : width(f.reflection->width) {
+    const int w = width, h = f.reflection->height;
+    constexpr int kSums = 7;  // count, 3 sums, 3 sums of squares
+    std::vector<double> rows(size_t(w) * h * kSums);
+    forRows(h, [&](int y0, int y1) {
+      for (int y = y0; y < y1; ++y)
+        for (int x = 0; x < w; ++x) {
+          double* r = &rows[(size_t(y) * w + x) * kSums];
+          for (int sx = std::max(0, x - kRadianceRadius); sx <= std::min(w - 1, x + kRadianceRadius); ++sx) {
+            if (!detail::isSurfaceDepth(f.depth->at(sx, y, 0))) continue;
+            r[0] += 1.0;
+            for (int c = 0; c < 3; ++c) {
+              const double v = f.reflection->at(sx, y, c);
+              r[1 + c] += v;
+              r[4 + c] += v * v;
+            }
+          }
+        }
+    });
+    mean.assign(size_t(w) * h * 3, 0.0);
+    variance.assign(size_t(w) * h * 3, 0.0);
+    forRows(h, [&](int y0, int y1) {
+      for (int y = y0; y < y1; ++y)
+        for (int x = 0; x < w; ++x) {
+          double sum[kSums] = {};
+          for (int sy = std::max(0, y - kRadianceRadius); sy <= std::min(h - 1, y + kRadianceRadius); ++sy)
+            for (int k = 0; k < kSums; ++k) sum[k] += rows[(size_t(sy) * w + x) * kSums + k];
+          if (sum[0] <= 0.0) continue;
+          for (int c = 0; c < 3; ++c) {
+            const double m = sum[1 + c] / sum[0];
+            mean[(size_t(y) * w + x) * 3 + c] = m;
+            variance[(size_t(y) * w + x) * 3 + c] = std::max(0.0, sum[4 + c] / sum[0] - m * m);
+          }
+        }
+    });
+  }
+
+  // Whether two pixels' neighbourhoods (this frame's at (x, y), o's at (ox, oy)) show the same
+  // radiance, within what their spread explains.
+  bool agrees(int x, int y, const RadianceStats& o, int ox, int oy, const TemporalSettings& s) const {
+    const size_t i = (size_t(y) * width + x) * 3, j = (size_t(oy) * o.width + ox) * 3;
+    for (int c = 0; c < 3; ++c) {
+      const double a = mean[i + c], b = o.mean[j + c];
+      const double tolerance = s.radianceSigmas * std::sqrt(2.0 * std::min(variance[i + c], o.variance[j + c])) +
+                               s.radianceShare * std::max(std::abs(a), std::abs(b));
+      if (!(std::abs(a - b) <= tolerance)) return false;
+    }
+    return true;
+  }
+};
+
 void requireImage(const Image* image, int width, int height, int channels, const std::string& what) {
   if (!image || image->width != width || image->height != height || image->channels != channels)
     throw Error(ErrorCode::InvalidArgument, "temporalBlend: frame " + what + " must be " + std::to_string(width) + "x" +
@@ -60,6 +130,8 @@ void validateTemporalSettings(const TemporalSettings& s) {
   check(s.distanceTolerance > 0.0f && s.distanceTolerance < 1.0f, "distanceTolerance");
   check(s.movedTolerance > 0.0f && s.movedTolerance < 1.0f, "movedTolerance");
   check(s.roughnessSpread >= 0.0f && s.roughnessSpread <= 10.0f, "roughnessSpread");
+  check(s.radianceSigmas > 0.0f && s.radianceSigmas <= 1000.0f, "radianceSigmas");
+  check(s.radianceShare >= 0.0f && s.radianceShare <= 1000.0f, "radianceShare");
   check(s.mirrorRoughness >= 0.0f && s.mirrorRoughness <= 1.0f, "mirrorRoughness");
   check(!s.constantRoughness || (*s.constantRoughness >= 0.0f && *s.constantRoughness <= 1.0f), "constantRoughness");
 }
@@ -84,11 +156,12 @@ Image temporalBlend(const std::vector<TemporalFrame>& frames, size_t centre, con
   }
   std::vector<FrameGeometry> geometry;
   for (const TemporalFrame& f : frames) geometry.emplace_back(f);
+  std::vector<RadianceStats> radiance;
+  for (const TemporalFrame& f : frames) radiance.emplace_back(f);
   const FrameGeometry& g = geometry[centre];
   const double cosNormal = std::cos(glm::radians(double(s.maxNormalDegrees)));
 
   Image out = *own.reflection;
-  // Rows split over threads: every pixel is computed alone, so the result is the same for any split.
   const auto blendRows = [&](int rowBegin, int rowEnd) {
     for (int y = rowBegin; y < rowEnd; ++y)
       for (int x = 0; x < w; ++x) {
@@ -139,6 +212,7 @@ Image temporalBlend(const std::vector<TemporalFrame>& frames, size_t centre, con
               if (e >= 1.0) continue;
               match = (1.0 - e) * (1.0 - e);
             }
+            if (!radiance[centre].agrees(x, y, radiance[j], sx, sy, s)) continue;
             const double wk = bilinear * match;
             for (int c = 0; c < 4; ++c) sum[c] += wk * frames[j].reflection->at(sx, sy, c);
             weight += wk;
@@ -148,10 +222,7 @@ Image temporalBlend(const std::vector<TemporalFrame>& frames, size_t centre, con
         for (int c = 0; c < 4; ++c) out.at(x, y, c) = float((own.reflection->at(x, y, c) + sum[c]) / (1.0 + weight));
       }
   };
-  const int threads = int(std::clamp(std::thread::hardware_concurrency(), 1u, 16u));
-  std::vector<std::thread> pool;
-  for (int t = 0; t < threads; ++t) pool.emplace_back(blendRows, h * t / threads, h * (t + 1) / threads);
-  for (std::thread& t : pool) t.join();
+  forRows(h, blendRows);
   return out;
 }
 

@@ -13,6 +13,13 @@
 // shows there (the object has moved). Weights fall with the hit-distance mismatch. Both tests
 // widen with roughness: a rough lobe's hit distance is a mean over hits spread across the lobe,
 // which moves with the view, and its hit (taken along the lobe's centre) need not lie on a surface.
+// Geometry cannot see a light that changes over the window: a tap is also refused where the
+// neighbour's radiance around it (the mean of a 5x5 neighbourhood) differs from the frame's own
+// around the pixel by more than noise and a ratio allow. The noise is the smaller of the two
+// neighbourhoods' spreads: a light's change scales the texture's spread with it, which would
+// otherwise hide the change on a textured reflection. The ratio: a camera move's views of one
+// reflection disagree locally by up to 2x beyond their noise (the view-dependent errors that the
+// blend averages away), so a light that changes by less is averaged too.
 #include <optional>
 #include <vector>
 
@@ -40,6 +47,12 @@ struct TemporalSettings {
   // (docs/BENCHMARKS.md "Shots"), a rough floor's hit distance is off by more than 20% between
   // views for most of its pixels, and its hit lies in front of the surface the neighbour shows.
   float roughnessSpread = 2.0f;
+  // Radiance test: refused where a colour channel's neighbourhood means differ by more than
+  // radianceSigmas times sqrt(2 x the smaller of their variances) plus radianceShare of the larger
+  // mean. Measured on Cycles shots (docs/BENCHMARKS.md "Shots"): a share of 0.1 refused much of
+  // what the blend gains on living_truck; 1.5 sigmas, not 3, keeps the analytic light switch out.
+  float radianceSigmas = 1.5f;
+  float radianceShare = 0.5f;
   float mirrorRoughness = 0.02f;           // pixels at or below keep their own pass (sharp, no noise)
   std::optional<float> constantRoughness;  // every pixel's roughness where frames have no image
 };

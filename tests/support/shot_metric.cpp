@@ -41,9 +41,10 @@ struct Geometry {
 }  // namespace
 
 TemporalError temporalError(const CyclesReference& prev, const Image& passPrev, const CyclesReference& cur,
-                            const Image& passCur) {
+                            const Image& passCur, std::vector<double>* perPixel) {
   const Geometry gp(prev), gc(cur);
   const int w = prev.gbuffer.depth.width, h = prev.gbuffer.depth.height;
+  if (perPixel) perPixel->assign(size_t(cur.gbuffer.depth.width) * cur.gbuffer.depth.height, NAN);
   double se = 0;
   TemporalError out;
   for (size_t k = 0; k < cur.pixels.size(); ++k) {
@@ -57,12 +58,15 @@ TemporalError temporalError(const CyclesReference& prev, const Image& passPrev, 
     const glm::dvec3 nq = gp.normal(j);
     if (glm::dot(gc.normal(i), nq) < kNormalCosine) continue;
     if (std::abs(glm::dot(gp.point(j) - p, nq)) > kPlaneTolerance * s.z) continue;
+    double pixel = 0;
     for (int c = 0; c < 3; ++c) {
       const double ec = passCur.data[size_t(passCur.channels) * size_t(i) + size_t(c)] - cur.cycles[3 * k + size_t(c)];
       const double ep =
           passPrev.data[size_t(passPrev.channels) * size_t(j) + size_t(c)] - prev.cycles[3 * size_t(kp) + size_t(c)];
-      se += (ec - ep) * (ec - ep);
+      pixel += (ec - ep) * (ec - ep);
     }
+    se += pixel;
+    if (perPixel) (*perPixel)[size_t(i)] = pixel;
     ++out.pixels;
   }
   if (!out.pixels) throw std::runtime_error("temporalError: no reflector pixel of a frame is seen in the one before");

@@ -23,8 +23,10 @@ struct TemporalError {
 
 // `prev` / `cur`: references of frames t-1 and t (compare with their glossy passes as they are:
 // the passes' scale is not applied); `passPrev` / `passCur`: the passes, RGB(A) per pixel.
+// `perPixel`, if given: each pixel of frame t's squared error summed over the channels, NaN for
+// pixels left out (where that error is, bench/score_shots --breakdown).
 TemporalError temporalError(const CyclesReference& prev, const Image& passPrev, const CyclesReference& cur,
-                            const Image& passCur);
+                            const Image& passCur, std::vector<double>* perPixel = nullptr);
 
 // tPSNR of a noise-free exact answer: RMS of the difference of two references of one frame
 // (another seed), over the pixels both call reflector, against a's peak.

@@ -1,0 +1,94 @@
+#include "shot_breakdown.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+
+#include "support/exr_fixtures.hpp"
+#include "support/shot_metric.hpp"
+
+namespace ssrcl::bench {
+namespace {
+
+// The band along the frame's edges: 8% of its width or height.
+constexpr double kEdgeBand = 0.08;
+
+struct Pool {
+  double se = 0, seReference = 0, sePass = 0;
+  size_t pixels = 0;
+};
+
+}  // namespace
+
+std::vector<std::vector<uint8_t>> classifyPixels(const std::vector<std::string>& mediumPasses) {
+  std::vector<std::vector<uint8_t>> out;
+  for (const std::string& path : mediumPasses) {
+    const test::ExrContents exr = test::readExr(path);
+    const auto it = exr.channels.find("distance");
+    if (it == exr.channels.end()) throw std::runtime_error(path + ": no channel distance");
+    const int w = exr.width, h = exr.height;
+    std::vector<uint8_t> classes(size_t(w) * h, 0);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        const size_t i = size_t(y) * w + x;
+        if (!(it->second.values[i] > 0.0f)) classes[i] |= kMiss;
+        if (x < kEdgeBand * w || x >= (1 - kEdgeBand) * w || y < kEdgeBand * h || y >= (1 - kEdgeBand) * h)
+          classes[i] |= kEdge;
+      }
+    out.push_back(std::move(classes));
+  }
+  return out;
+}
+
+void printBreakdown(std::ostream& out, const std::string& label, const std::vector<test::CyclesReference>& refs,
+                    const std::vector<Image>& passes, const std::vector<std::vector<uint8_t>>& classes,
+                    const std::vector<Image>* alone) {
+  const char* names[] = {"all", "environment", "hit", "edge band", "interior", "unblended", "unbl. env."};
+  constexpr int kClasses = 7;
+  Pool pools[kClasses];
+  double peak = 0;
+  // The references with their values zeroed: the pass's own change along the surface.
+  std::vector<test::CyclesReference> blank = refs;
+  for (test::CyclesReference& r : blank) std::fill(r.cycles.begin(), r.cycles.end(), 0.0);
+  for (size_t t = 1; t < refs.size(); ++t) {
+    std::vector<double> se, seReference, sePass;
+    test::temporalError(refs[t - 1], passes[t - 1], refs[t], passes[t], &se);
+    const Image zeros(passes[t].width, passes[t].height, passes[t].channels);
+    test::temporalError(refs[t - 1], zeros, refs[t], zeros, &seReference);
+    test::temporalError(blank[t - 1], passes[t - 1], blank[t], passes[t], &sePass);
+    peak += refs[t].peak / double(refs.size() - 1);
+    for (size_t i = 0; i < se.size(); ++i) {
+      if (std::isnan(se[i])) continue;
+      const uint8_t c = classes[t][i];
+      bool unblended = false;
+      if (alone) {
+        unblended = true;
+        for (int ch = 0; ch < 3; ++ch)
+          unblended = unblended && passes[t].data[size_t(passes[t].channels) * i + size_t(ch)] ==
+                                       (*alone)[t].data[size_t((*alone)[t].channels) * i + size_t(ch)];
+      }
+      const bool in[kClasses] = {true,      (c & kMiss) != 0,        !(c & kMiss), (c & kEdge) != 0, !(c & kEdge),
+                                 unblended, unblended && (c & kMiss)};
+      for (int k = 0; k < kClasses; ++k)
+        if (in[k])
+          pools[k].se += se[i], pools[k].seReference += seReference[i], pools[k].sePass += sePass[i], ++pools[k].pixels;
+    }
+  }
+  const auto db = [&](double se, size_t n) {
+    return n ? 20 * std::log10(peak / std::sqrt(se / (3.0 * double(n)))) : NAN;
+  };
+  out << label
+      << ": class, share of pixels, share of TE^2, tPSNR there; the references' change there and the "
+         "pass's, as tPSNR (dB)\n"
+      << std::fixed << std::setprecision(2);
+  for (int k = 0; k < kClasses; ++k) {
+    if (k >= 5 && !alone) continue;
+    const Pool& p = pools[k];
+    out << "  " << std::left << std::setw(12) << names[k] << std::right << std::setw(8)
+        << 100.0 * double(p.pixels) / double(pools[0].pixels) << "%" << std::setw(8) << 100.0 * p.se / pools[0].se
+        << "%" << std::setw(8) << db(p.se, p.pixels) << std::setw(8) << db(p.seReference, p.pixels) << std::setw(8)
+        << db(p.sePass, p.pixels) << "\n";
+  }
+}
+
+}  // namespace ssrcl::bench

@@ -1,0 +1,30 @@
+#pragma once
+// Where a pass's temporal error lies (ssrcl_score_shots --breakdown): the pooled TE of every pair
+// of a shot split by what each pixel of frame t shows in the medium pass (a hit, or a miss the
+// environment fills), whether it lies in the band along the frame's edges (rays that leave the
+// screen), and, for a blended pass, whether the blend took no neighbour there (the pass equals
+// the frame traced alone with the same seed). Each class also gets the references' own change
+// along the surface (their noise, and what truly changes: the TE a pass of zeros would have) and
+// the pass's own change (its TE against references of zeros).
+#include <cstdint>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "ssrcl/image.hpp"
+#include "support/cycles_reference.hpp"
+
+namespace ssrcl::bench {
+
+// Per frame, per pixel: kMiss where the medium pass has no hit, kEdge in the edge band.
+enum PixelClass : uint8_t { kMiss = 1, kEdge = 2 };
+std::vector<std::vector<uint8_t>> classifyPixels(const std::vector<std::string>& mediumPasses);
+
+// One line per class: share of the pixels, share of TE^2, tPSNR of the pass over those pixels,
+// of the references' own change there and of the pass's own change. `alone`: the frames traced alone (nullptr: no
+// "unblended" class).
+void printBreakdown(std::ostream& out, const std::string& label, const std::vector<test::CyclesReference>& refs,
+                    const std::vector<Image>& passes, const std::vector<std::vector<uint8_t>>& classes,
+                    const std::vector<Image>* alone);
+
+}  // namespace ssrcl::bench
