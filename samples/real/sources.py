@@ -3,9 +3,8 @@
     python3 samples/real/sources.py <mirror dir> [<assets dir>]
 
 <mirror dir> holds bare git copies of the repositories below, one per repository, named
-<owner>+<name>/repo (what the session's `fetch github:<owner>/<name>` tool makes, e.g.
-/work/.mirror; `git clone --bare https://github.com/<owner>/<name> <owner>+<name>/repo` makes
-the same). Every file is read at the recorded commit with `git cat-file blob` and written to
+<owner>+<name>/repo (`git clone --bare https://github.com/<owner>/<name> <owner>+<name>/repo`
+makes one). Every file is read at the recorded commit with `git cat-file blob` and written to
 <assets dir>/<local name> (default samples/real/assets, which git ignores: the raw assets are
 not committed, only the renders made from them). A blob the snapshot lacks is an error naming
 the repository, commit and path.
