@@ -60,6 +60,81 @@ inline float plane_depth_at(const PixelLines* lines, float2 pixel, float3 p, flo
   return depth > 0.0f && isfinite(depth) ? depth : -1.0f;
 }
 
+// The view-space unit normal of a normal as written. Normals need not be unit length: scaled to
+// their largest component first, so that neither huge (length overflows) nor denormal ones (length
+// underflows) are lost. Zero or non-finite normals leave the pixel without a reflection (*ok false:
+// it still occludes, facing the camera).
+inline float3 view_normal(float16 normal_matrix, float3 nw, bool* ok) {
+  float scale = fmax(fabs(nw.x), fmax(fabs(nw.y), fabs(nw.z)));
+  bool normal_ok = isfinite(scale) && scale > 0.0f;
+  float3 nv = mat3_mul(normal_matrix, normal_ok ? nw / scale : (float3)(0.0f));
+  float len = length(nv);
+  *ok = normal_ok && isfinite(len) && len > 1e-20f;
+  return *ok ? nv / len : (float3)(0.0f, 0.0f, 1.0f);
+}
+
+// Length of a normal as written, scaled as view_normal scales it (0 for unusable ones).
+inline float written_length(float3 n) {
+  float scale = fmax(fabs(n.x), fmax(fabs(n.y), fabs(n.z)));
+  return isfinite(scale) && scale > 0.0f ? scale * length(n / scale) : 0.0f;
+}
+
+inline float pixel_roughness(float constant_roughness, __global const float* roughness_in, int i) {
+  float r = constant_roughness >= 0.0f ? constant_roughness : roughness_in[i];
+  return isnan(r) ? 1.0f : clamp(r, 0.0f, 1.0f);
+}
+
+// Cycles' background depth (1e10) means no surface even under an infinite far plane.
+inline bool surface_depth(float d, float near_plane, float far_plane) {
+  return isfinite(d) && d >= near_plane && d <= far_plane && d < SSRCL_BACKGROUND_DEPTH;
+}
+
+// Mixed (edge) pixels. Cycles writes the Normal and Roughness passes as the mean over a pixel's
+// samples but Depth from its first sample alone (intern/cycles/kernel/film/data_passes.h), so a
+// pixel holding two surfaces has the depth of one and the mean of their normals: shorter than 1,
+// facing neither. Where its rays leave the screen, the fill read the environment along the mirror
+// direction off that mean, which no surface in the pixel has (where a cup's foot meets a steel
+// plate, 38 degrees from the plate's: a softbox 18 times the frame's peak where Cycles sees 0.11).
+// So its fill takes the normal and roughness of the surface its depth is on: of the neighbours
+// with a full-length normal whose plane passes through the pixel's point, the one nearest the mean
+// in direction (the largest share of it). A pixel no neighbour explains keeps the mean. The trace
+// keeps the mean (docs/BENCHMARKS.md "Mixed pixels": what the neighbour's normal does there).
+#define SSRCL_FULL_NORMAL 0.9f  // written normals this long (up to its inverse) are one surface's
+#define SSRCL_ON_PLANE 0.01f    // of the depth: a point this near a neighbour's plane lies on it
+
+// The index of the neighbour whose surface mixed pixel (x, y) is on, or -1.
+inline int mixed_pixel_source(const PixelLines* lines, int2 size, int x, int y, float3 nw, float3 p,
+                              float16 normal_matrix, float near_plane, float far_plane,
+                              __global const float* depth_in, __global const float* normal_in) {
+  float len = written_length(nw);
+  if (!(len > 0.0f && len < SSRCL_FULL_NORMAL)) return -1;
+  float3 mean = nw / len;
+  int best = -1;
+  float best_share = -INFINITY;
+  for (int dy = -1; dy <= 1; ++dy)
+    for (int dx = -1; dx <= 1; ++dx) {
+      int qx = x + dx, qy = y + dy;
+      if ((dx == 0 && dy == 0) || qx < 0 || qy < 0 || qx >= size.x || qy >= size.y) continue;
+      int j = qy * size.x + qx;
+      float dj = depth_in[j];
+      float3 nj = vload3(j, normal_in);
+      float lj = written_length(nj);
+      if (!surface_depth(dj, near_plane, far_plane) || !(lj >= SSRCL_FULL_NORMAL && lj <= 1.0f / SSRCL_FULL_NORMAL))
+        continue;
+      nj /= lj;
+      float3 v;
+      float3 origin = pixel_line(lines, (float2)((float)qx + 0.5f, (float)qy + 0.5f), &v);
+      float3 pj = origin + (dj + origin.z) * (v * (-1.0f / v.z));
+      if (!(fabs(dot(p - pj, mat3_mul(normal_matrix, nj))) <= SSRCL_ON_PLANE * -p.z)) continue;
+      float share = dot(mean, nj);
+      if (share > best_share) {
+        best = j;
+        best_share = share;
+      }
+    }
+  return best;
+}
+
 // Runs in SSRCL_TILE^2 work-groups; listed pixels are counted in local memory first so the global
 // counters (ray_count[SSRCL_COUNT_*]) see one atomic per group instead of one per pixel.
 __kernel void setup(SetupParams params, __global const float* color_in,
@@ -69,7 +144,8 @@ __kernel void setup(SetupParams params, __global const float* color_in,
                     __global float4* position_out, __global float* hzb_out, __global float4* normal_out,
                     __global float4* color_out,
                     __global int* pixel_rays, __global int* ray_list, __global int* tile_list,
-                    __global int* ray_count, __global float4* plane_out) {
+                    __global int* ray_count, __global float4* plane_out,
+                    __global float4* fill_normal_out) {
   __local int group_count, group_base, group_rays, group_traced, group_reflecting;
   const int2 size = (int2)(params.frame.width, params.frame.height);
   const float16 normal_matrix = vload16(0, params.frame.normal_matrix), inv_proj = vload16(0, params.frame.inv_proj);
@@ -83,8 +159,7 @@ __kernel void setup(SetupParams params, __global const float* color_in,
   bool traced = false, listed = false, reflecting = false;
   if (inside) {
     float d = depth_in[i];
-    // Cycles' background depth (1e10) means no surface even under an infinite far plane.
-    bool surface = isfinite(d) && d >= near_plane && d <= far_plane && d < SSRCL_BACKGROUND_DEPTH;
+    bool surface = surface_depth(d, near_plane, far_plane);
     float3 v;
     float3 origin = pixel_line(&lines, (float2)((float)x + 0.5f, (float)y + 0.5f), &v);
     float3 step = v * (-1.0f / v.z);
@@ -92,19 +167,16 @@ __kernel void setup(SetupParams params, __global const float* color_in,
     float3 p = origin + (d + origin.z) * step;
     surface = surface && all(isfinite(p));
 
-    // Normals need not be unit length: scaled to their largest component first, so that neither
-    // huge (length overflows) nor denormal ones (length underflows) are lost. Zero or non-finite
-    // normals leave the pixel without a reflection (it still occludes, facing the camera).
     float3 nw = vload3(i, normal_in);
-    float scale = fmax(fabs(nw.x), fmax(fabs(nw.y), fabs(nw.z)));
-    bool normal_ok = isfinite(scale) && scale > 0.0f;
-    float3 nv = mat3_mul(normal_matrix, normal_ok ? nw / scale : (float3)(0.0f));
-    float len = length(nv);
-    normal_ok = normal_ok && isfinite(len) && len > 1e-20f;
-    nv = normal_ok ? nv / len : (float3)(0.0f, 0.0f, 1.0f);
-
-    float r = constant_roughness >= 0.0f ? constant_roughness : roughness_in[i];
-    r = isnan(r) ? 1.0f : clamp(r, 0.0f, 1.0f);
+    bool normal_ok, source_ok;
+    float3 nv = view_normal(normal_matrix, nw, &normal_ok);
+    float r = pixel_roughness(constant_roughness, roughness_in, i);
+    int source = surface ? mixed_pixel_source(&lines, size, x, y, nw, p, normal_matrix, near_plane, far_plane,
+                                              depth_in, normal_in)
+                         : -1;
+    fill_normal_out[i] = source >= 0 ? (float4)(view_normal(normal_matrix, vload3(source, normal_in), &source_ok),
+                                                pixel_roughness(constant_roughness, roughness_in, source))
+                                     : (float4)(nv, r);
 
     // Colour (not premultiplied) with, in w, the weight prefiltered lookups give the pixel
     // (kernels/hit_prefilter.cl adds each batch's hits to the 1): 0 on sky, which rays never hit,

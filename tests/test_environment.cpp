@@ -148,6 +148,42 @@ TEST(Environment, MirrorReadsBlenderMappingAlongTheReflectedRay) {
   }
 }
 
+// An edge pixel holding two surfaces: Cycles averages their normals over the pixel's samples
+// but writes the depth of its first sample alone, so the pixel's point lies on one surface while
+// its normal (here 0.6 floor + 0.4 a wall's, length 0.72) faces neither. On the floor's plane its
+// fill reads along the floor's mirror direction (its full-length neighbours' surface); off every
+// neighbour's plane nothing says which surface it is on, and it reads along the mean's.
+TEST(Environment, MixedEdgePixelFillsAlongTheSurfaceItsDepthIsOn) {
+  const ssrcl::EnvironmentMap env = ssrcl::prefilterEnvironment(equirect(512, linearSky));
+  FloorView view = floorView(0.0f);
+  const dvec3 mixed = 0.6 * dvec3(0, 0, 1) + 0.4 * dvec3(1, 0, 0);
+  const int onFloor = 20, offPlane = 32;
+  for (int y = 0; y < view.camera.height; ++y)
+    for (int x : {onFloor, offPlane}) {
+      for (int c = 0; c < 3; ++c) view.gbuffer.normal.at(x, y, c) = float(mixed[c]);
+      if (x == offPlane) view.gbuffer.depth.at(x, y, 0) *= 1.1f;
+    }
+  const ssrcl::Image out = trace(view, env);
+  const dvec3 n = glm::normalize(mixed);
+  double worstFloor = 0, worstOff = 0, averagedFloor = 0;
+  for (int y = 0; y < view.camera.height; ++y) {
+    const int floorPixel = y * view.camera.width + onFloor, offPixel = y * view.camera.width + offPlane;
+    const dvec3 d = ssrcl::test::primaryRay(view.camera, offPlane + 0.5, y + 0.5).direction;
+    const dvec3 averaged = linearSky(d - 2 * glm::dot(d, n) * n);
+    const dvec3 dFloor = ssrcl::test::primaryRay(view.camera, onFloor + 0.5, y + 0.5).direction;
+    const dvec3 floorAveraged = linearSky(dFloor - 2 * glm::dot(dFloor, n) * n);
+    for (int c = 0; c < 3; ++c) {
+      worstFloor =
+          std::max(worstFloor, std::abs(out.data[4 * floorPixel + c] - linearSky(view.reflected[floorPixel])[c]));
+      worstOff = std::max(worstOff, std::abs(out.data[4 * offPixel + c] - averaged[c]));
+      averagedFloor = std::max(averagedFloor, std::abs(floorAveraged[c] - linearSky(view.reflected[floorPixel])[c]));
+    }
+  }
+  EXPECT_GT(averagedFloor, 0.1) << "the averaged normal's reflection must be told apart from the floor's";
+  EXPECT_LT(worstFloor, 2e-3) << "on the floor's plane: the floor's mirror direction";
+  EXPECT_LT(worstOff, 2e-3) << "off every neighbour's plane: the averaged normal's";
+}
+
 TEST(Environment, RoughLobesAverageTheEnvironmentOverTheGgxLobe) {
   const ssrcl::EnvironmentMap env = ssrcl::prefilterEnvironment(equirect(512, linearSky));
   // Roughness 0.5 and 1.0 fall on prefiltered levels; 0.3 between two.

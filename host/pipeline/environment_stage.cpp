@@ -6,7 +6,7 @@
 
 namespace ssrcl::detail {
 
-const StageAccess EnvironmentStage::access{"environment", {Role::Positions, Role::Normals}, {Role::Reflection}};
+const StageAccess EnvironmentStage::access{"environment", {Role::Positions, Role::FillNormals}, {Role::Reflection}};
 
 void EnvironmentStage::validate(const EnvironmentMap& map) {
   const std::string name = map.source.empty() ? "environment" : map.source;
@@ -49,7 +49,7 @@ void EnvironmentStage::bind(cl::CommandQueue& q, const FrameResources& resources
   }
   q.enqueueWriteBuffer(levels_, CL_TRUE, 0, packed_.size() * sizeof(HzbLevel), packed_.data());
   bindArgs(kernel_, 1, "positions, normals, texels, levels, rgba", resources.read(access, Role::Positions),
-           resources.read(access, Role::Normals), texels_, levels_, resources.write(access, Role::Reflection));
+           resources.read(access, Role::FillNormals), texels_, levels_, resources.write(access, Role::Reflection));
 }
 
 void EnvironmentStage::enqueue(cl::CommandQueue& q, const FrameConstants& frame, const glm::dmat4& view,

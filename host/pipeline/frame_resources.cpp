@@ -14,11 +14,11 @@ bool declares(const std::vector<Role>& roles, Role role) {
 }  // namespace
 
 const char* roleName(Role role) {
-  static const char* const names[] = {"positions",      "normals",          "planes",         "back guess",
-                                      "pixel rays",     "ray list",         "tile list",      "depth pyramid",
-                                      "pyramid levels", "back pyramid",     "colour pyramid", "ray hits",
-                                      "ray radiance",   "ray states",       "resolved rgba",  "resolved distance",
-                                      "reflection",     "distance",         "view share"};
+  static const char* const names[] = {"positions",         "normals",        "fill normals", "planes",
+                                      "back guess",        "pixel rays",     "ray list",     "tile list",
+                                      "depth pyramid",     "pyramid levels", "back pyramid", "colour pyramid",
+                                      "ray hits",          "ray radiance",   "ray states",   "resolved rgba",
+                                      "resolved distance", "reflection",     "distance",     "view share"};
   static_assert(sizeof(names) / sizeof(names[0]) == size_t(Role::Count), "a name per role");
   return names[size_t(role)];
 }

@@ -14,6 +14,7 @@ namespace ssrcl::detail {
 enum class Role {
   Positions,         // view-space point, planar depth in w (SSRCL_NO_SURFACE: none)
   Normals,           // view-space normal, roughness in w
+  FillNormals,       // as Normals, for the environment fill (a mixed pixel: its surface's; setup.cl)
   Planes,            // surface plane over thickness, the trace's hit test (kernels/surface_plane.cl)
   BackGuess,         // with a back-face pass: the model's thickness over the exact one where it knows (else 0)
   PixelRays,         // rays per pixel

@@ -5,8 +5,8 @@ namespace ssrcl::detail {
 // Level 0 of both pyramids is setup's: the HZB and colour pyramid stages reduce the rest.
 const StageAccess SetupStage::access{"setup",
                                      {},
-                                     {Role::Positions, Role::Normals, Role::Planes, Role::PixelRays, Role::RayList,
-                                      Role::TileList, Role::DepthPyramid, Role::ColorPyramid}};
+                                     {Role::Positions, Role::Normals, Role::FillNormals, Role::Planes, Role::PixelRays,
+                                      Role::RayList, Role::TileList, Role::DepthPyramid, Role::ColorPyramid}};
 
 void SetupStage::configure(Device::Impl& device) {
   kernel_ = cl::Kernel(
@@ -24,6 +24,7 @@ void SetupStage::plan(FrameResources& resources, DeviceBuffers& buffers, const F
   buffers.add(roughnessIn_, roughnessImage ? pixels * sizeof(float) : 0, CL_MEM_READ_ONLY);
   resources.plan(access, buffers, Role::Positions, pixels * sizeof(cl_float4));
   resources.plan(access, buffers, Role::Normals, pixels * sizeof(cl_float4));
+  resources.plan(access, buffers, Role::FillNormals, pixels * sizeof(cl_float4));
   resources.plan(access, buffers, Role::PixelRays, pixels * sizeof(cl_int));
   resources.plan(access, buffers, Role::RayList, pixels * sizeof(cl_int));
   resources.plan(access, buffers, Role::TileList, size_t(frame.tilesX) * frame.tilesY * sizeof(cl_int));
@@ -37,10 +38,10 @@ void SetupStage::bind(const FrameResources& resources) {
   auto out = [&](Role role) { return resources.write(access, role); };
   bindArgs(kernel_, 1,
            "color_in, depth_in, normal_in, roughness_in, position_out, hzb_out, normal_out, color_out, pixel_rays, "
-           "ray_list, tile_list, ray_count, plane_out",
+           "ray_list, tile_list, ray_count, plane_out, fill_normal_out",
            colorIn_, depthIn_, normalIn_, roughnessIn_, out(Role::Positions), out(Role::DepthPyramid),
            out(Role::Normals), out(Role::ColorPyramid), out(Role::PixelRays), out(Role::RayList), out(Role::TileList),
-           counts_, out(Role::Planes));
+           counts_, out(Role::Planes), out(Role::FillNormals));
 }
 
 SetupParams SetupStage::params(const FrameConstants& frame, const TraceSettings& s, int colorChannels) {
