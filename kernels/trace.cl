@@ -289,12 +289,8 @@ inline void note_past_back8(const TraceScene* sc, const ScreenRays8* r, int8 now
                             float8 t, int8* past, float8* past_t, int8* past_x, int8* past_y) {
   now &= ~*past;
   if (!any_lane(now)) return;
-  int x[8], y[8];
-  vstore8(clamp(cx, 0, sc->size.x - 1), 0, x);
-  vstore8(clamp(cy, 0, sc->size.y - 1), 0, y);
-  float guess[8];
-  for (int k = 0; k < 8; ++k) guess[k] = sc->guess[y[k] * sc->size.x + x[k]];
-  now &= -g <= vload8(0, guess) * (r->q0w + t * r->dqw);
+  int8 q = clamp(cy, 0, sc->size.y - 1) * sc->size.x + clamp(cx, 0, sc->size.x - 1);
+  now &= -g <= gather8(sc->guess, q) * (r->q0w + t * r->dqw);
   *past |= now;
   *past_t = select(*past_t, t, now);
   *past_x = select(*past_x, cx, now);
