@@ -60,23 +60,29 @@ inline float plane_depth_at(const PixelLines* lines, float2 pixel, float3 p, flo
   return depth > 0.0f && isfinite(depth) ? depth : -1.0f;
 }
 
-// The view-space unit normal of a normal as written. Normals need not be unit length: scaled to
-// their largest component first, so that neither huge (length overflows) nor denormal ones (length
-// underflows) are lost. Zero or non-finite normals leave the pixel without a reflection (*ok false:
-// it still occludes, facing the camera).
+// Normals need not be unit length: they are scaled to their largest component first, so that
+// neither huge (length overflows) nor denormal ones (length underflows) are lost. 0 for zero or
+// non-finite normals.
+inline float normal_scale(float3 n) {
+  float scale = fmax(fabs(n.x), fmax(fabs(n.y), fabs(n.z)));
+  return isfinite(scale) && scale > 0.0f ? scale : 0.0f;
+}
+
+// The view-space unit normal of a normal as written. Zero or non-finite normals leave the pixel
+// without a reflection (*ok false: it still occludes, facing the camera).
 inline float3 view_normal(float16 normal_matrix, float3 nw, bool* ok) {
-  float scale = fmax(fabs(nw.x), fmax(fabs(nw.y), fabs(nw.z)));
-  bool normal_ok = isfinite(scale) && scale > 0.0f;
+  float scale = normal_scale(nw);
+  bool normal_ok = scale > 0.0f;
   float3 nv = mat3_mul(normal_matrix, normal_ok ? nw / scale : (float3)(0.0f));
   float len = length(nv);
   *ok = normal_ok && isfinite(len) && len > 1e-20f;
   return *ok ? nv / len : (float3)(0.0f, 0.0f, 1.0f);
 }
 
-// Length of a normal as written, scaled as view_normal scales it (0 for unusable ones).
+// Length of a normal as written (0 for unusable ones).
 inline float written_length(float3 n) {
-  float scale = fmax(fabs(n.x), fmax(fabs(n.y), fabs(n.z)));
-  return isfinite(scale) && scale > 0.0f ? scale * length(n / scale) : 0.0f;
+  float scale = normal_scale(n);
+  return scale > 0.0f ? scale * length(n / scale) : 0.0f;
 }
 
 inline float pixel_roughness(float constant_roughness, __global const float* roughness_in, int i) {
