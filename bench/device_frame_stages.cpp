@@ -48,7 +48,7 @@ struct DeviceFrameStages::Impl {
     back.configure(device, true, false);
     colors.configure(device, s, false);
     resources.beginPlan();
-    setup.plan(resources, buffers, frame, g.color.channels, !s.constantRoughness);
+    setup.plan(resources, buffers, frame, g.color.channels, !s.constantRoughness, false);
     thickness.plan(resources, buffers, frame);
     hzb.plan(resources, buffers, frame);
     back.plan(resources, buffers, frame);

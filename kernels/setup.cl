@@ -174,15 +174,18 @@ __kernel void setup(SetupParams params, __global const float* color_in,
     surface = surface && all(isfinite(p));
 
     float3 nw = vload3(i, normal_in);
-    bool normal_ok, source_ok;
+    bool normal_ok;
     float3 nv = view_normal(normal_matrix, nw, &normal_ok);
     float r = pixel_roughness(constant_roughness, roughness_in, i);
-    int source = surface ? mixed_pixel_source(&lines, size, x, y, nw, p, normal_matrix, near_plane, far_plane,
-                                              depth_in, normal_in)
-                         : -1;
-    fill_normal_out[i] = source >= 0 ? (float4)(view_normal(normal_matrix, vload3(source, normal_in), &source_ok),
-                                                pixel_roughness(constant_roughness, roughness_in, source))
-                                     : (float4)(nv, r);
+    if (params.fill_normals) {
+      int source = surface ? mixed_pixel_source(&lines, size, x, y, nw, p, normal_matrix, near_plane, far_plane,
+                                                depth_in, normal_in)
+                           : -1;
+      bool source_ok;
+      fill_normal_out[i] = source >= 0 ? (float4)(view_normal(normal_matrix, vload3(source, normal_in), &source_ok),
+                                                  pixel_roughness(constant_roughness, roughness_in, source))
+                                       : (float4)(nv, r);
+    }
 
     // Colour (not premultiplied) with, in w, the weight prefiltered lookups give the pixel
     // (kernels/hit_prefilter.cl adds each batch's hits to the 1): 0 on sky, which rays never hit,

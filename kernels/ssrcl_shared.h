@@ -89,6 +89,7 @@ typedef struct {
   ssrcl_int classify;           // 0: every pixel and tile listed (the unclassified baseline)
   float thickness_rel;          // constant thickness model: share of depth
   ssrcl_int adaptive_thickness;  // 1: kernels/thickness.cl finishes the thickness
+  ssrcl_int fill_normals;       // 1: write fill_normal_out (an environment fill follows)
 } SetupParams;
 
 // kernels/thickness.cl

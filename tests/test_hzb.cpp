@@ -88,7 +88,7 @@ std::vector<Image> buildHzb(const ssrcl::Device& device, const Inputs& in, const
   DeviceBuffers buffers;
   FrameResources resources;
   resources.beginPlan();
-  setup.plan(resources, buffers, frame, 3, false);
+  setup.plan(resources, buffers, frame, 3, false, false);
   hzb.plan(resources, buffers, frame);
   colors.plan(resources, buffers, frame);
   buffers.allocate(d, "the test frame");

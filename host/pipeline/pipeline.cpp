@@ -138,7 +138,7 @@ void Pipeline::Impl::plan() {
   committedViews = views.size();
 
   resources.beginPlan();
-  setup.plan(resources, buffers, frame, colorChannels, !settings.constantRoughness);
+  setup.plan(resources, buffers, frame, colorChannels, !settings.constantRoughness, environment != nullptr);
   thickness.plan(resources, buffers, frame);
   hzb.plan(resources, buffers, frame);
   backPyramid.plan(resources, buffers, frame);

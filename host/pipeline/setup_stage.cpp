@@ -14,9 +14,10 @@ void SetupStage::configure(Device::Impl& device) {
 }
 
 void SetupStage::plan(FrameResources& resources, DeviceBuffers& buffers, const FrameShape& frame, int colorChannels,
-                      bool roughnessImage) {
+                      bool roughnessImage, bool fillNormals) {
   frame_ = frame;
   colorChannels_ = colorChannels;
+  fillNormals_ = fillNormals;
   const size_t pixels = frame.pixels();
   buffers.add(colorIn_, pixels * colorChannels * sizeof(float), CL_MEM_READ_ONLY);
   buffers.add(depthIn_, pixels * sizeof(float), CL_MEM_READ_ONLY);
@@ -24,7 +25,7 @@ void SetupStage::plan(FrameResources& resources, DeviceBuffers& buffers, const F
   buffers.add(roughnessIn_, roughnessImage ? pixels * sizeof(float) : 0, CL_MEM_READ_ONLY);
   resources.plan(access, buffers, Role::Positions, pixels * sizeof(cl_float4));
   resources.plan(access, buffers, Role::Normals, pixels * sizeof(cl_float4));
-  resources.plan(access, buffers, Role::FillNormals, pixels * sizeof(cl_float4));
+  resources.plan(access, buffers, Role::FillNormals, fillNormals ? pixels * sizeof(cl_float4) : 0);
   resources.plan(access, buffers, Role::PixelRays, pixels * sizeof(cl_int));
   resources.plan(access, buffers, Role::RayList, pixels * sizeof(cl_int));
   resources.plan(access, buffers, Role::TileList, size_t(frame.tilesX) * frame.tilesY * sizeof(cl_int));
@@ -71,7 +72,9 @@ void SetupStage::enqueue(cl::CommandQueue& q, const Inputs& in, const SetupParam
   if (in.roughness)
     q.enqueueWriteBuffer(roughnessIn_, CL_FALSE, 0, pixels * sizeof(float), in.roughness, nullptr,
                          newEvent(events, "upload"));
-  kernel_.setArg(0, params);
+  SetupParams planned = params;
+  planned.fill_normals = fillNormals_;
+  kernel_.setArg(0, planned);
   q.enqueueNDRangeKernel(kernel_, cl::NullRange, frame_.tiled2d(), cl::NDRange(SSRCL_TILE, SSRCL_TILE), nullptr,
                          newEvent(events, "setup"));
 }

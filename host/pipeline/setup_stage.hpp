@@ -23,8 +23,9 @@ class SetupStage {
   static const StageAccess access;
 
   void configure(Device::Impl& device);
+  // fillNormals: the environment fill's normals (Role::FillNormals) are written; no buffer without.
   void plan(FrameResources& resources, DeviceBuffers& buffers, const FrameShape& frame, int colorChannels,
-            bool roughnessImage);
+            bool roughnessImage, bool fillNormals);
   void bind(const FrameResources& resources);
   void enqueue(cl::CommandQueue& q, const Inputs& in, const SetupParams& params, StageEvents& events);
   Counts readCounts(cl::CommandQueue& q);  // waits for the setup to finish
@@ -33,6 +34,7 @@ class SetupStage {
  private:
   FrameShape frame_;
   int colorChannels_ = 0;
+  bool fillNormals_ = false;
   cl::Kernel kernel_;
   cl::Buffer colorIn_, depthIn_, normalIn_, roughnessIn_, counts_;
 };

@@ -65,7 +65,7 @@ void ViewStage::plan(DeviceBuffers& buffers, const std::vector<ViewSource>& view
     u.frame = FrameShape(c.width, c.height);
     colorChannels_.push_back(views[k].inputs.view("color").channels);
     u.resources.beginPlan();
-    u.setup.plan(u.resources, buffers, u.frame, colorChannels_.back(), views[k].inputs.has("roughness"));
+    u.setup.plan(u.resources, buffers, u.frame, colorChannels_.back(), views[k].inputs.has("roughness"), false);
     u.thickness.plan(u.resources, buffers, u.frame);
     u.hzb.plan(u.resources, buffers, u.frame);
     u.colors.plan(u.resources, buffers, u.frame);
