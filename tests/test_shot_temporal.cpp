@@ -107,7 +107,7 @@ TEST(ShotTemporal, WithNeighboursAShardEqualsTheWholeRun) {
   const std::string whole = dir.file("whole"), sharded = dir.file("sharded");
   const auto all = runCommand(batch(whole, "--temporal 1 --neighbours 1"));
   ASSERT_EQ(all.exitCode, 0) << all.output;
-  const auto shard = runCommand(batch(sharded, "--temporal 1 --neighbours 1 --shard 1/2"));
+  const auto shard = runCommand(batch(sharded, "--temporal 1 --neighbours 1 --shard 1/3"));
   ASSERT_EQ(shard.exitCode, 0) << shard.output;
   const auto a = outputs(whole), b = outputs(sharded);
   ASSERT_EQ(b.size(), 1u);

@@ -63,7 +63,7 @@ int runBatch(BatchOptions& o) {
   const std::vector<FrameJob> all = planBatch(o.request);
   settleBatchOutputForm(o, all);
   for (size_t i = 0; i < all.size(); ++i)
-    if (shard.owns(i)) jobs.push_back(all[i]);
+    if (shard.owns(i, all.size())) jobs.push_back(all[i]);
   std::unique_ptr<NeighbourWindow> neighbours;
   if (o.neighbours != 0)
     neighbours = std::make_unique<NeighbourWindow>(o.in, all, o.neighbours, static_cast<int>(o.views.size()));
