@@ -27,7 +27,7 @@ struct BatchOptions {
   GBufferInputOptions in;
   std::vector<std::string> views, viewCameras;  // static views, shared by every frame
   int neighbours = 0;                           // frames f-K..f+K as views of frame f
-  int temporal = 0;                             // passes of frames f-K..f+K blended into frame f's
+  int temporal = 3;                             // passes of frames f-K..f+K blended into frame f's
   SettingsOptions settings;
   OutputOptions out;
   // Readers and as many writers; a quarter of the cores leaves the rest to a CPU device.
