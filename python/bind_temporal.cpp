@@ -30,7 +30,8 @@ py::array temporalBlendArrays(const std::vector<py::dict>& frames, size_t centre
   std::vector<TemporalFrame> window;
   for (const PyTemporalFrame& t : images)
     window.push_back(
-        {&t.reflection, &t.distance, &t.depth, &t.normal, t.roughness.empty() ? nullptr : &t.roughness, t.camera});
+        {&t.reflection, &t.distance, &t.depth, &t.normal, t.roughness.empty() ? nullptr : &t.roughness, t.camera,
+         nullptr});  // one blend: its statistics computed in it
   TemporalSettings settings;
   settings.constantRoughness = roughness;
   settings.mirrorRoughness = mirrorRoughness;

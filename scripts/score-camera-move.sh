@@ -22,7 +22,7 @@ for f in "$dir/$scene".[0-9][0-9][0-9][0-9].exr; do
 done
 for k in "${ks[@]}"; do
   out="$dir/refl-k$k"
-  "$build/ssrcl" batch "$dir/$scene.####.exr" -o "$out/" --neighbours "$k" --overwrite -q --report "$out.json"
+  "$build/ssrcl" batch "$dir/$scene.####.exr" -o "$out/" --neighbours "$k" --temporal 0 --overwrite -q --report "$out.json"
   echo "== --neighbours $k"
   "$build/bench/ssrcl_score_passes" --passes "$out" "${scored[@]}"
   python3 -c 'import json,sys; r=json.load(open(sys.argv[1])); f=[x for x in r["frames"] if x["status"]=="done"]

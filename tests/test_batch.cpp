@@ -72,8 +72,10 @@ class Batch : public ::testing::Test {
   void corrupt(int frame) { ssrcl::test::writeBytes(input(frame), "not an EXR file at all"); }
 };
 
+// `--temporal 0`: each frame alone, as `ssrcl trace` (the default blends its neighbours' passes:
+// test_shot_temporal).
 TEST_F(Batch, OutputsAreBitIdenticalToTrace) {
-  auto r = batch("--io-threads 3");
+  auto r = batch("--temporal 0 --io-threads 3");
   ASSERT_EQ(r.exitCode, 0) << r.output;
   EXPECT_NE(r.output.find("4 done"), std::string::npos) << r.output;
   EXPECT_EQ(r.output.find('\r'), std::string::npos) << "no progress line when not a terminal: " << r.output;
@@ -125,7 +127,7 @@ TEST_F(Batch, AStaticViewGivesWhatTraceGives) {
   wide.roughness = 0.3;
   ssrcl::test::writeAnalyticSequence(wide);
   const std::string view = dir.file("views/wide.1001.exr");
-  auto r = batch("--io-threads 2 --view " + shellQuote(view));
+  auto r = batch("--temporal 0 --io-threads 2 --view " + shellQuote(view));
   ASSERT_EQ(r.exitCode, 0) << r.output;
   for (int f = 1001; f < 1001 + kFrames; ++f) {
     const std::string traced = dir.file("trace." + std::to_string(f) + ".exr");
@@ -170,9 +172,11 @@ TEST_F(Batch, ResumeRemovesStaleTemporariesBesideFinishedFrames) {
   EXPECT_TRUE(fs::exists(foreign));
 }
 
+// Each frame alone (`--temporal 0`): a bad frame fails itself only (blended, it fails the frames
+// whose window holds it: ShotTemporal.AnUnreadableWindowFrameFailsOnlyTheFramesItBlendsInto).
 TEST_F(Batch, ABadFrameIsReportedAndTheOthersAreDone) {
   corrupt(1002);
-  auto r = batch("--report " + shellQuote(dir.file("r.json")));
+  auto r = batch("--temporal 0 --report " + shellQuote(dir.file("r.json")));
   EXPECT_EQ(r.exitCode, 2) << r.output;
   EXPECT_NE(r.output.find("frame 1002: " + input(1002)), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(output(1002)));
@@ -189,7 +193,7 @@ TEST_F(Batch, ABadFrameIsReportedAndTheOthersAreDone) {
 }
 
 TEST_F(Batch, MissingFramesOfARangeFail) {
-  auto r = batch("--frames 1001-1005x2");
+  auto r = batch("--temporal 0 --frames 1001-1005x2");
   EXPECT_EQ(r.exitCode, 2) << r.output;
   EXPECT_NE(r.output.find("frame 1005"), std::string::npos) << r.output;
   EXPECT_TRUE(fs::exists(output(1001)));
@@ -199,7 +203,7 @@ TEST_F(Batch, MissingFramesOfARangeFail) {
 
 TEST_F(Batch, FailFastStopsAtTheFirstFailure) {
   corrupt(1002);
-  auto r = batch("--fail-fast --io-threads 1 --report " + shellQuote(dir.file("r.json")));
+  auto r = batch("--temporal 0 --fail-fast --io-threads 1 --report " + shellQuote(dir.file("r.json")));
   EXPECT_EQ(r.exitCode, 2) << r.output;
   EXPECT_TRUE(fs::exists(output(1001)));
   EXPECT_FALSE(fs::exists(output(1003)));
@@ -232,7 +236,8 @@ TEST_F(Batch, ReportHasTotalsRatesAndEachFrame) {
 TEST_F(Batch, GlobWithStemAndOneCamera) {
   const std::string camera = dir.file("in/shot.1001.camera.json");
   auto r = runCommand(cli("batch " + shellQuote(dir.file("in/*.exr")) + " -o " +
-                          shellQuote(dir.file("g/{stem}_refl.exr")) + " --camera " + shellQuote(camera)));
+                          shellQuote(dir.file("g/{stem}_refl.exr")) + " --camera " + shellQuote(camera) +
+                          " --temporal 0"));
   ASSERT_EQ(r.exitCode, 0) << r.output;
   for (int f = 1001; f < 1001 + kFrames; ++f)
     EXPECT_TRUE(fs::exists(dir.file("g/shot." + std::to_string(f) + "_refl.exr"))) << f;

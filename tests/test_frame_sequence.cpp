@@ -96,21 +96,23 @@ TEST(Shard, ParsesKOverN) {
     EXPECT_THROW(parseShard(bad), Error) << bad;
 }
 
-TEST(Shard, SharesAreDisjointCoverEverythingAndBalance) {
-  for (int n = 1; n <= 7; ++n) {
-    std::vector<int> owners(100, 0);
-    for (int k = 0; k < n; ++k) {
-      size_t mine = 0;
-      for (size_t i = 0; i < owners.size(); ++i)
-        if (Shard{k, n}.owns(i)) {
-          ++owners[i];
-          ++mine;
-        }
-      EXPECT_LE(mine, (owners.size() + n - 1) / n);
-      EXPECT_GE(mine, owners.size() / n);
+TEST(Shard, SharesAreDisjointConsecutiveCoverEverythingAndBalance) {
+  for (size_t total : {size_t(3), size_t(100)})
+    for (int n = 1; n <= 7; ++n) {
+      std::vector<int> owners(total, 0);
+      for (int k = 0; k < n; ++k) {
+        std::vector<size_t> mine;
+        for (size_t i = 0; i < total; ++i)
+          if (Shard{k, n}.owns(i, total)) {
+            ++owners[i];
+            mine.push_back(i);
+          }
+        EXPECT_LE(mine.size(), (total + n - 1) / n);
+        EXPECT_GE(mine.size(), total / n);
+        if (!mine.empty()) EXPECT_EQ(mine.back() - mine.front() + 1, mine.size()) << k << "/" << n;  // one run
+      }
+      EXPECT_TRUE(std::all_of(owners.begin(), owners.end(), [](int o) { return o == 1; })) << n << " shards";
     }
-    EXPECT_TRUE(std::all_of(owners.begin(), owners.end(), [](int o) { return o == 1; })) << n << " shards";
-  }
 }
 
 class Plan : public ::testing::Test {

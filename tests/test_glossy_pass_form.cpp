@@ -16,6 +16,7 @@
 #include "support/ggx_reference.hpp"
 #include "support/glossy_truth.hpp"
 #include "support/run_command.hpp"
+#include "support/simple_camera.hpp"
 #include "support/temp_dir.hpp"
 #include "support/test_device.hpp"
 
@@ -359,6 +360,53 @@ TEST(GlossyPassForm, MatchesCyclesOnATintedFloor) {
   RecordProperty("psnr_incident_times_untinted_E", std::to_string(psnrUntinted));
   EXPECT_GT(psnrGlossy, 34.0);  // measured 35.4 at medium
   EXPECT_GT(psnrGlossy, psnrUntinted + 4.0);  // measured 29.3
+}
+
+// A mixed pixel (Cycles' mean normal of a floor and an object's side, shorter than 1, its depth on
+// the floor): its E is the floor's by the floor's share of the mean plus the mean's by the rest, the
+// floor being the neighbour on whose plane its point lies; a mixed pixel off every neighbour's
+// plane keeps the mean's E. Against the quadrature of the lobe at each normal's view angle.
+TEST(GlossyPassForm, MixedPixelTakesItsSurfacesEByShare) {
+  const int w = 16, h = 12;
+  const ssrcl::Camera camera = ssrcl::test::perspectiveCamera(w, h);  // looks down at the floor y = 0
+  const glm::dmat4 invViewProj = glm::inverse(camera.projection * camera.view);
+  const glm::dvec3 eye = glm::dvec3(glm::inverse(camera.view)[3]), up(0, 1, 0), side(0, 0, 1);  // side: facing the eye
+  const double share = 0.7, roughness = 0.2, f0 = 0.04;
+  ssrcl::GBuffer g;
+  g.depth = ssrcl::Image(w, h, 1);
+  g.normal = ssrcl::Image(w, h, 3);
+  g.roughness = ssrcl::Image(w, h, 1);
+  g.f0 = ssrcl::Image(w, h, 3);
+  std::vector<glm::dvec3> toEye(size_t(w) * h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const size_t i = size_t(y) * w + x;
+      const glm::dvec2 ndc(2.0 * (x + 0.5) / w - 1.0, 1.0 - 2.0 * (y + 0.5) / h);
+      const glm::dvec4 a = invViewProj * glm::dvec4(ndc, -1, 1), b = invViewProj * glm::dvec4(ndc, 1, 1);
+      const glm::dvec3 pa = glm::dvec3(a) / a.w, pb = glm::dvec3(b) / b.w;
+      const glm::dvec3 floorPoint = pa + (pb - pa) * (pa.y / (pa.y - pb.y));
+      g.depth.data[i] = float(-(camera.view * glm::dvec4(floorPoint, 1.0)).z);
+      toEye[i] = glm::normalize(eye - floorPoint);
+      for (int c = 0; c < 3; ++c) g.normal.data[3 * i + c] = float(up[c]), g.f0.data[3 * i + c] = float(f0);
+      g.roughness.data[i] = float(roughness);
+    }
+  const glm::dvec3 mean = share * up + (1 - share) * side;  // length 0.76
+  const size_t mixed = 8 * size_t(w) + 8, offPlane = 8 * size_t(w) + 4;
+  for (size_t i : {mixed, offPlane})
+    for (int c = 0; c < 3; ++c) g.normal.data[3 * i + c] = float(mean[c]);
+  g.depth.data[offPlane] *= 0.8f;  // in front of the floor: no neighbour's plane passes through it
+  ssrcl::Image pass(w, h, 4);
+  std::fill(pass.data.begin(), pass.data.end(), 1.0f);
+  ssrcl::applyGlossyPassForm(pass, g, camera, std::nullopt);
+
+  const auto e = [&](const glm::dvec3& n, size_t i) { return albedoTruth(glm::dot(glm::normalize(n), toEye[i]), roughness, f0); };
+  const double floorE = e(up, mixed), meanE = e(mean, mixed);
+  ASSERT_GT(floorE, meanE * 1.2);  // the case matters: the mean faces the eye more, its Fresnel is lower
+  EXPECT_NEAR(pass.data[4 * mixed], share * floorE + (1 - share) * meanE, 5e-3 * floorE);
+  const size_t floorPixel = 8 * size_t(w) + 10;
+  EXPECT_NEAR(pass.data[4 * floorPixel], e(up, floorPixel), 5e-3 * floorE);
+  // Off-plane: toEye from the floor point behind it, the same ray.
+  EXPECT_NEAR(pass.data[4 * offPlane], e(mean, offPlane), 5e-3 * floorE);
 }
 
 }  // namespace

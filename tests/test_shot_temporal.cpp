@@ -107,11 +107,31 @@ TEST(ShotTemporal, WithNeighboursAShardEqualsTheWholeRun) {
   const std::string whole = dir.file("whole"), sharded = dir.file("sharded");
   const auto all = runCommand(batch(whole, "--temporal 1 --neighbours 1"));
   ASSERT_EQ(all.exitCode, 0) << all.output;
-  const auto shard = runCommand(batch(sharded, "--temporal 1 --neighbours 1 --shard 1/2"));
+  const auto shard = runCommand(batch(sharded, "--temporal 1 --neighbours 1 --shard 1/3"));
   ASSERT_EQ(shard.exitCode, 0) << shard.output;
   const auto a = outputs(whole), b = outputs(sharded);
   ASSERT_EQ(b.size(), 1u);
   EXPECT_EQ(b.at(stem(2)), a.at(stem(2)));
+}
+
+// `ssrcl batch` blends by default (`--temporal 3`): a sharded default run equals the whole one,
+// which equals `--temporal 3` and differs from each frame alone.
+TEST(ShotTemporal, TheDefaultBlendsAndShardsEqualTheWholeRun) {
+  ssrcl::test::TempDir dir("ssrcl-shot-default");
+  const std::string whole = dir.file("whole"), sharded = dir.file("sharded");
+  ASSERT_EQ(runCommand(batch(whole, "")).exitCode, 0);
+  for (const char* shard : {"0/2", "1/2"}) {
+    const auto r = runCommand(batch(sharded, std::string("--shard ") + shard));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+  }
+  const auto expected = outputs(whole);
+  ASSERT_EQ(expected.size(), size_t(kFrames));
+  EXPECT_EQ(outputs(sharded), expected);
+  const std::string three = dir.file("three"), alone = dir.file("alone");
+  ASSERT_EQ(runCommand(batch(three, "--temporal 3")).exitCode, 0);
+  EXPECT_EQ(outputs(three), expected);
+  ASSERT_EQ(runCommand(batch(alone, "--temporal 0")).exitCode, 0);
+  EXPECT_NE(outputs(alone), expected);
 }
 
 // A shard reads the frames of its windows it does not own; one that cannot be read fails the

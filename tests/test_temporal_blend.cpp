@@ -68,7 +68,7 @@ AnalyticFrame makeFrame(int f, double noiseAmplitude, double ceiling = kCeiling,
 std::vector<ssrcl::TemporalFrame> window(const std::vector<AnalyticFrame>& frames) {
   std::vector<ssrcl::TemporalFrame> out;
   for (const AnalyticFrame& a : frames)
-    out.push_back({&a.reflection, &a.distance, &a.depth, &a.normal, &a.roughness, a.camera});
+    out.push_back({&a.reflection, &a.distance, &a.depth, &a.normal, &a.roughness, a.camera, nullptr});
   return out;
 }
 
@@ -180,6 +180,28 @@ TEST(TemporalBlend, RejectsFramesOfAnotherSize) {
   bad = {};
   bad.radianceSigmas = 0.0f;
   EXPECT_THROW(ssrcl::temporalBlend(window(frames), 0, bad), ssrcl::Error);
+}
+
+// Statistics computed once per frame and shared by the windows that hold it blend as those
+// computed in each blend, bit for bit; another frame's of another size are refused.
+TEST(TemporalBlend, SharedFrameStatisticsBlendTheSame) {
+  std::vector<AnalyticFrame> frames;
+  for (int f = -2; f <= 2; ++f) frames.push_back(makeFrame(f, 0.2, kCeiling, 0.3f));
+  std::vector<ssrcl::TemporalFrame> shared = window(frames);
+  for (ssrcl::TemporalFrame& f : shared) f.statistics = ssrcl::temporalFrameStatistics(f);
+  for (size_t centre = 0; centre < frames.size(); ++centre) {
+    const ssrcl::Image own = ssrcl::temporalBlend(window(frames), centre, {});
+    EXPECT_EQ(ssrcl::temporalBlend(shared, centre, {}).data, own.data) << "centre " << centre;
+    EXPECT_NE(own.data, frames[centre].reflection.data);  // it did blend
+  }
+  AnalyticFrame half = makeFrame(0, 0.2);
+  half.reflection = ssrcl::Image(kW / 2, kH, 4);
+  half.depth = ssrcl::Image(kW / 2, kH, 1);
+  half.camera.width = kW / 2;
+  shared[1].statistics = ssrcl::temporalFrameStatistics(window({half})[0]);
+  EXPECT_THROW(ssrcl::temporalBlend(shared, 0, {}), ssrcl::Error);
+  half.camera.width = kW;  // images not of the camera's size
+  EXPECT_THROW(ssrcl::temporalFrameStatistics(window({half})[0]), ssrcl::Error);
 }
 
 }  // namespace

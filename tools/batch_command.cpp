@@ -27,7 +27,7 @@ struct BatchOptions {
   GBufferInputOptions in;
   std::vector<std::string> views, viewCameras;  // static views, shared by every frame
   int neighbours = 0;                           // frames f-K..f+K as views of frame f
-  int temporal = 0;                             // passes of frames f-K..f+K blended into frame f's
+  int temporal = 3;                             // passes of frames f-K..f+K blended into frame f's
   SettingsOptions settings;
   OutputOptions out;
   // Readers and as many writers; a quarter of the cores leaves the rest to a CPU device.
@@ -63,7 +63,7 @@ int runBatch(BatchOptions& o) {
   const std::vector<FrameJob> all = planBatch(o.request);
   settleBatchOutputForm(o, all);
   for (size_t i = 0; i < all.size(); ++i)
-    if (shard.owns(i)) jobs.push_back(all[i]);
+    if (shard.owns(i, all.size())) jobs.push_back(all[i]);
   std::unique_ptr<NeighbourWindow> neighbours;
   if (o.neighbours != 0)
     neighbours = std::make_unique<NeighbourWindow>(o.in, all, o.neighbours, static_cast<int>(o.views.size()));

@@ -30,12 +30,17 @@ std::vector<int> framesOnDisk(const FramePattern& pattern);
 std::vector<std::string> globFiles(const std::string& glob);
 bool isGlob(const std::string& path);
 
-// One farm task's share: items i with i % count == index, so N tasks split a list into disjoint
-// parts that together cover it, whatever each task's start time or what it finds done.
+// One farm task's share of a list of `total` items: the consecutive items from total * index /
+// count up to total * (index + 1) / count, so N tasks split a list into disjoint parts that
+// together cover it, whatever each task's start time or what it finds done. Consecutive, so that
+// a task blending frames f-K..f+K (`--temporal`, `--neighbours`) traces 2K frames more than its
+// own, not 2K + 1 frames for each.
 struct Shard {
   int index = 0;
   int count = 1;
-  bool owns(size_t item) const { return item % size_t(count) == size_t(index); }
+  bool owns(size_t item, size_t total) const {
+    return item >= total * size_t(index) / size_t(count) && item < total * size_t(index + 1) / size_t(count);
+  }
 };
 // "K/N" with 0 <= K < N; Error(InvalidArgument) otherwise.
 Shard parseShard(const std::string& spec);

@@ -56,7 +56,7 @@ double TemporalWindow::trace(Pipeline& pipeline, NeighbourWindow* neighbours, si
 }
 
 void TemporalWindow::fail(size_t index, const Error& error) {
-  if (waiting_.count(index)) traced_.insert_or_assign(index, Traced{{}, {}, {}, {}, {}, {}, {}, error});
+  if (waiting_.count(index)) traced_.insert_or_assign(index, Traced{{}, {}, {}, {}, {}, {}, {}, error, nullptr});
 }
 
 bool TemporalWindow::ready(const std::string& input) const {
@@ -89,8 +89,8 @@ TemporalWindow::Pass TemporalWindow::blend(Pipeline& pipeline, const std::string
       releaseWindow(centre);
       throw Error(e.code(), "temporal neighbour " + sequence_[j].input + ": " + e.what());
     }
-    frames.push_back(
-        {&t.reflection, &t.distance, &t.depth, &t.normal, t.roughness.empty() ? nullptr : &t.roughness, t.camera});
+    frames.push_back({&t.reflection, &t.distance, &t.depth, &t.normal, t.roughness.empty() ? nullptr : &t.roughness,
+                      t.camera, t.statistics});
   }
   TemporalSettings settings;
   settings.mirrorRoughness = pipeline.settings().mirrorRoughness;
@@ -98,6 +98,11 @@ TemporalWindow::Pass TemporalWindow::blend(Pipeline& pipeline, const std::string
   const Traced& own = traced_.at(centre);
   Pass pass;
   try {
+    // Each frame's statistics once, kept with it for the other windows that hold it.
+    for (size_t j = first; j <= last; ++j) {
+      Traced& t = traced_.at(j);
+      if (!t.statistics) frames[j - first].statistics = t.statistics = temporalFrameStatistics(frames[j - first]);
+    }
     pass = {temporalBlend(frames, centre - first, settings), own.distance, own.view};
   } catch (...) {
     releaseWindow(centre);

@@ -7,6 +7,7 @@
 // The batch reads and traces every frame of the windows once, in any order (plan()); a traced
 // frame is kept while a planned frame's window that still waits for its blend holds it.
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -58,6 +59,7 @@ class TemporalWindow {
     Image reflection, distance, view, depth, normal, roughness;
     Camera camera;
     std::optional<Error> failure;  // read or traced it could not be
+    std::shared_ptr<const TemporalFrameStatistics> statistics;  // at its first blend, for the rest
   };
   std::pair<size_t, size_t> span(size_t index) const;
   // One planned blend fewer waits for each frame of `index`'s window; frames none waits for go.

@@ -38,6 +38,73 @@ DefaultOutputForm detail::defaultOutputForm(const GBufferSource& source, ExrFile
   return {OutputForm::Incident, file + " has no " + missing};
 }
 
+namespace {
+
+// Mixed (edge) pixels: Cycles writes the Normal pass as the mean over a pixel's samples and Depth
+// from its first sample (kernels/setup.cl), so a pixel holding a floor and an object's edge has
+// the depth of one and a normal shorter than 1 that faces neither. E read along that mean is
+// neither surface's: at a grazing wet floor, where the Fresnel falls steeply with the angle, half
+// the floor's, and it flips with the pixel's coverage from frame to frame. Its source is the
+// surface its depth is on, as setup.cl's mixed_pixel_source picks it (whose lobe the environment
+// fill reads): of the eight neighbours with a full-length normal whose plane passes within 1% of
+// the depth of the pixel's point, the one nearest the mean in direction. Its share of the pixel
+// is the mean's component along it (the rest taken at right angles to it: an object standing on
+// or in front of a floor).
+class MixedPixels {
+ public:
+  static constexpr double kFullNormal = 0.9, kOnPlane = 0.01;  // setup.cl's SSRCL_FULL_NORMAL, SSRCL_ON_PLANE
+
+  MixedPixels(const GBuffer& g, const Camera& camera, const glm::dmat4& inverseProjection)
+      : g_(g), camera_(camera), inverseProjection_(inverseProjection), w_(g.normal.width), h_(g.normal.height) {}
+
+  glm::dvec3 normal(std::size_t i) const {
+    return {g_.normal.data[3 * i], g_.normal.data[3 * i + 1], g_.normal.data[3 * i + 2]};
+  }
+  glm::dvec3 unitNormal(std::size_t i) const { return glm::normalize(normal(i)); }
+
+  // The source neighbour's index of mixed pixel (x, y), or -1 (not mixed, or no neighbour explains it).
+  int source(int x, int y) const {
+    const std::size_t i = std::size_t(y) * w_ + x;
+    const double length = glm::length(normal(i));
+    if (!(length > 0 && length < kFullNormal) || g_.depth.data.size() != std::size_t(w_) * h_ ||
+        !surface(g_.depth.data[i]))
+      return -1;
+    const glm::dvec3 mean = normal(i) / length, p = point(x, y);
+    int best = -1;
+    double bestShare = -INFINITY;
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        const int qx = x + dx, qy = y + dy;
+        if ((dx == 0 && dy == 0) || qx < 0 || qy < 0 || qx >= w_ || qy >= h_) continue;
+        const std::size_t j = std::size_t(qy) * w_ + qx;
+        const double lj = glm::length(normal(j));
+        if (!surface(g_.depth.data[j]) || !(lj >= kFullNormal && lj <= 1 / kFullNormal)) continue;
+        const glm::dvec3 nj = normal(j) / lj;
+        const glm::dvec3 njView = glm::dvec3(camera_.view * glm::dvec4(nj, 0.0));
+        if (!(std::abs(glm::dot(p - point(qx, qy), njView)) <= kOnPlane * -p.z)) continue;
+        const double share = glm::dot(mean, nj);
+        if (share > bestShare) best = int(j), bestShare = share;
+      }
+    return best;
+  }
+
+ private:
+  // setup.cl's surface_depth: within the clip planes, short of the background's 1e10.
+  bool surface(float d) const {
+    return std::isfinite(d) && d >= camera_.nearPlane && d <= camera_.farPlane && d < 1e10f;
+  }
+  glm::dvec3 point(int x, int y) const {
+    return cameraPointAt(inverseProjection_, camera_, x + 0.5, y + 0.5, g_.depth.data[std::size_t(y) * w_ + x]);
+  }
+
+  const GBuffer& g_;
+  const Camera& camera_;
+  const glm::dmat4& inverseProjection_;
+  int w_, h_;
+};
+
+}  // namespace
+
 void applyGlossyPassForm(Image& reflection, const GBuffer& g, const Camera& camera,
                          std::optional<float> constantRoughness) {
   const bool fromF0 = !g.f0.empty(), fromBase = !g.baseColor.empty() && !g.metallic.empty();
@@ -56,6 +123,7 @@ void applyGlossyPassForm(Image& reflection, const GBuffer& g, const Camera& came
   // orthographic alike, any depth layout), in world space.
   const glm::dmat4 inverseProjection = glm::inverse(camera.projection);
   const glm::dmat4 cameraToWorld = glm::inverse(camera.view);
+  const MixedPixels mixed(g, camera, inverseProjection);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       const std::size_t i = std::size_t(y) * w + x;
@@ -70,6 +138,15 @@ void applyGlossyPassForm(Image& reflection, const GBuffer& g, const Camera& came
                               : 0.0;
       const double roughness = constantRoughness ? *constantRoughness : g.roughness.data[i];
       const SpecularAlbedo e = specularAlbedo(roughness, cosO);
+      // A mixed pixel's E: its source surface's by that surface's share, the mean's for the rest.
+      const int source = eyeLength > 0 ? mixed.source(x, y) : -1;
+      double share = 0;
+      SpecularAlbedo eSource = e;
+      if (source >= 0) {
+        const glm::dvec3 ns = mixed.unitNormal(std::size_t(source));
+        share = std::clamp(glm::dot(n, ns), 0.0, 1.0);
+        eSource = specularAlbedo(roughness, glm::dot(ns, toEye) / eyeLength);
+      }
       // An F0 pass reads as metallic 1: F0 as given, clamped to [0, 1].
       const glm::dvec3 f0 =
           fromF0 ? principledF0({g.f0.data[3 * i], g.f0.data[3 * i + 1], g.f0.data[3 * i + 2]}, 1.0)
@@ -77,7 +154,7 @@ void applyGlossyPassForm(Image& reflection, const GBuffer& g, const Camera& came
                                 g.metallic.data[i]);
       for (int c = 0; c < 3; ++c) {
         float& v = reflection.data[i * reflection.channels + c];
-        v = float(v * e(f0[c]));
+        v = float(v * (share * eSource(f0[c]) + (1 - share) * e(f0[c])));
       }
     }
 }

@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <cmath>
 #include <glm/glm.hpp>
+#include <memory>
 #include <string>
 #include <thread>
 
@@ -14,17 +15,14 @@ namespace {
 // Where a miss's reflected point is taken: far enough to be a direction for any camera move.
 constexpr double kMissDistance = 1e6;
 
-// A frame's pixel geometry in world space, from its depth and camera.
+// A frame's pixel geometry in world space, from its depth and camera (the camera's inverses from
+// its statistics).
 struct FrameGeometry {
   const TemporalFrame* frame;
-  glm::dmat4 inverseProjection, inverseView;
+  const glm::dmat4 &inverseProjection, &inverseView;
   glm::dvec3 eye;
 
-  explicit FrameGeometry(const TemporalFrame& f)
-      : frame(&f),
-        inverseProjection(glm::inverse(f.camera.projection)),
-        inverseView(glm::inverse(f.camera.view)),
-        eye(glm::dvec3(inverseView[3])) {}
+  FrameGeometry(const TemporalFrame& f, const TemporalFrameStatistics& statistics);
 
   glm::dvec3 point(int x, int y) const {
     const glm::dvec3 c = cameraPointAt(inverseProjection, frame->camera, x + 0.5, y + 0.5, frame->depth->at(x, y, 0));
@@ -121,6 +119,31 @@ void requireImage(const Image* image, int width, int height, int channels, const
 
 }  // namespace
 
+struct TemporalFrameStatistics {
+  int width = 0, height = 0;
+  glm::dmat4 inverseProjection, inverseView;
+  RadianceStats radiance;
+};
+
+namespace {
+
+FrameGeometry::FrameGeometry(const TemporalFrame& f, const TemporalFrameStatistics& statistics)
+    : frame(&f),
+      inverseProjection(statistics.inverseProjection),
+      inverseView(statistics.inverseView),
+      eye(glm::dvec3(inverseView[3])) {}
+
+}  // namespace
+
+std::shared_ptr<const TemporalFrameStatistics> temporalFrameStatistics(const TemporalFrame& frame) {
+  if (!frame.reflection) throw Error(ErrorCode::InvalidArgument, "temporalFrameStatistics: frame reflection missing");
+  const int w = frame.camera.width, h = frame.camera.height;
+  requireImage(frame.reflection, w, h, 4, "reflection (of its camera's size)");
+  requireImage(frame.depth, w, h, 1, "depth (of its camera's size)");
+  return std::make_shared<const TemporalFrameStatistics>(TemporalFrameStatistics{
+      w, h, glm::inverse(frame.camera.projection), glm::inverse(frame.camera.view), RadianceStats(frame)});
+}
+
 void validateTemporalSettings(const TemporalSettings& s) {
   const auto check = [](bool ok, const char* name) {
     if (!ok) throw Error(ErrorCode::InvalidArgument, std::string("TemporalSettings::") + name + " out of range");
@@ -154,10 +177,14 @@ Image temporalBlend(const std::vector<TemporalFrame>& frames, size_t centre, con
     if (f.camera.width != w || f.camera.height != h)
       throw Error(ErrorCode::InvalidArgument, "temporalBlend: a frame's camera is not of its images' size");
   }
+  std::vector<std::shared_ptr<const TemporalFrameStatistics>> statistics;
   std::vector<FrameGeometry> geometry;
-  for (const TemporalFrame& f : frames) geometry.emplace_back(f);
-  std::vector<RadianceStats> radiance;
-  for (const TemporalFrame& f : frames) radiance.emplace_back(f);
+  for (const TemporalFrame& f : frames) {
+    statistics.push_back(f.statistics ? f.statistics : temporalFrameStatistics(f));
+    if (statistics.back()->width != w || statistics.back()->height != h)
+      throw Error(ErrorCode::InvalidArgument, "temporalBlend: a frame's statistics are not of its images' size");
+    geometry.emplace_back(f, *statistics.back());
+  }
   const FrameGeometry& g = geometry[centre];
   const double cosNormal = std::cos(glm::radians(double(s.maxNormalDegrees)));
 
@@ -212,7 +239,7 @@ Image temporalBlend(const std::vector<TemporalFrame>& frames, size_t centre, con
               if (e >= 1.0) continue;
               match = (1.0 - e) * (1.0 - e);
             }
-            if (!radiance[centre].agrees(x, y, radiance[j], sx, sy, s)) continue;
+            if (!statistics[centre]->radiance.agrees(x, y, statistics[j]->radiance, sx, sy, s)) continue;
             const double wk = bilinear * match;
             for (int c = 0; c < 4; ++c) sum[c] += wk * frames[j].reflection->at(sx, sy, c);
             weight += wk;

@@ -20,6 +20,7 @@
 // otherwise hide the change on a textured reflection. The ratio: a camera move's views of one
 // reflection disagree locally by up to 2x beyond their noise (the view-dependent errors that the
 // blend averages away), so a light that changes by less is averaged too.
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -27,6 +28,11 @@
 #include "ssrcl/image.hpp"
 
 namespace ssrcl {
+
+// What the blend derives from a frame alone (its pixels' neighbourhood radiance statistics, its
+// camera's inverses): computed once per frame by temporalFrameStatistics and shared by every
+// window that holds the frame, instead of once per window (2K + 1 times for `--temporal K`).
+struct TemporalFrameStatistics;
 
 // One traced frame of the window: its pipeline outputs and G-buffer (same size), not owned.
 struct TemporalFrame {
@@ -36,6 +42,9 @@ struct TemporalFrame {
   const Image* normal = nullptr;      // 3 channels, world space
   const Image* roughness = nullptr;   // 1 channel; nullptr: constantRoughness
   Camera camera;
+  // temporalFrameStatistics of this very frame (its reflection, depth and camera), or empty:
+  // temporalBlend then computes them for this call.
+  std::shared_ptr<const TemporalFrameStatistics> statistics;
 };
 
 struct TemporalSettings {
@@ -59,10 +68,15 @@ struct TemporalSettings {
 // Throws Error(InvalidArgument) naming the first setting out of range.
 void validateTemporalSettings(const TemporalSettings& settings);
 
+// A frame's statistics for temporalBlend (TemporalFrame::statistics). Throws
+// Error(InvalidArgument) where its reflection or depth is missing or of another size than its camera.
+std::shared_ptr<const TemporalFrameStatistics> temporalFrameStatistics(const TemporalFrame& frame);
+
 // The reflection of frames[centre] blended with the other frames: per pixel the weighted mean of
 // its own pass (weight 1) and every neighbour's accepted pixels (bilinear weight times the
-// distance-mismatch weight). Same inputs, same output, whatever the thread count. Throws
-// Error(InvalidArgument) for frames of different sizes or missing images.
+// distance-mismatch weight). Same inputs, same output, whatever the thread count and whether the
+// frames' statistics were given. Throws Error(InvalidArgument) for frames of different sizes or
+// missing images, or statistics of another size.
 Image temporalBlend(const std::vector<TemporalFrame>& frames, size_t centre, const TemporalSettings& settings);
 
 }  // namespace ssrcl

@@ -132,9 +132,9 @@ matches_trace() {
   echo "$n outputs identical to ssrcl trace"
 }
 
-# 1. A shot of 8 frames in 4 array tasks.
+# 1. A shot of 8 frames in 4 array tasks; `--temporal 0`: each frame alone, as `ssrcl trace`.
 "$make_sequence" "$work/shot" 8 64 36 0.3 >/dev/null
-job=$(submit "$work/reports/1" --array=0-3 "$script" "$work/shot/shot.####.exr" "$work/out1/")
+job=$(submit "$work/reports/1" --array=0-3 "$script" "$work/shot/shot.####.exr" "$work/out1/" --temporal 0)
 wait_job "$job"
 [ "$(ls "$work/reports/1" | wc -l)" -eq 4 ] || { logs; fail "expected a report from each of the 4 tasks"; }
 [ "$(count done "$work/reports/1")" -eq 8 ] || { logs; fail "the 4 tasks did not compute the 8 frames once each"; }
@@ -143,7 +143,7 @@ no_temporaries "$work/out1"
 
 # 2. Cancelled mid-run (one task at a time, slow frames), then resubmitted.
 "$make_sequence" "$work/slow" 12 160 90 0.3 >/dev/null
-slow=("$script" "$work/slow/shot.####.exr" "$work/out2/" --quality reference --spp 64)
+slow=("$script" "$work/slow/shot.####.exr" "$work/out2/" --quality reference --spp 64 --temporal 0)
 job=$(submit "$work/reports/2a" --array=0-3%1 "${slow[@]}")
 for _ in $(seq 600); do
   compgen -G "$work/out2/*.exr" >/dev/null || [ -z "$(squeue -h -j "$job" 2>/dev/null)" ] && break
