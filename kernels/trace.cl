@@ -58,11 +58,18 @@ inline float cell_exit(const ScreenRay* r, float t, float nudge, float cell_size
   return fmin(tb.x, tb.y);
 }
 
+// A row of a projection times (p, 1), rounded as written (no fused multiply-add): the screen ray's
+// ends in make_screen_ray and in its lanes (ray_from_lanes) round the same, whatever dot() does.
+#pragma OPENCL FP_CONTRACT OFF
+inline float project_row(float4 row, float3 p) { return ((row.x * p.x + row.y * p.y) + row.z * p.z) + row.w; }
+inline float8 project_lanes(float4 row, Lanes3 p) { return ((row.x * p.x + row.y * p.y) + row.z * p.z) + row.w; }
+#pragma OPENCL FP_CONTRACT ON
+
 // Screen ray for a view-space segment p0 -> p1, clipped to the screen so that t in [0, 1] spans
 // its on-screen part; false when either end is behind the camera.
 inline bool make_screen_ray(float16 proj, int2 size, float3 p0, float3 p1, ScreenRay* r) {
-  float4 h0 = mat_mul(proj, (float4)(p0, 1.0f));
-  float4 h1 = mat_mul(proj, (float4)(p1, 1.0f));
+  float4 h0 = (float4)(project_row(proj.s0123, p0), project_row(proj.s4567, p0), 0.0f, project_row(proj.scdef, p0));
+  float4 h1 = (float4)(project_row(proj.s0123, p1), project_row(proj.s4567, p1), 0.0f, project_row(proj.scdef, p1));
   if (!(h0.w > 0.0f && h1.w > 0.0f)) return false;
   float k0 = 1.0f / h0.w, k1 = 1.0f / h1.w;
   r->s0 = ndc_to_pixel(h0.xy * k0, size);
@@ -541,6 +548,40 @@ inline bool ray_from(float16 proj, int2 size, float near_plane, float far_plane,
   return len > 0.0f && segment_ray(proj, size, p, p + dir * len, ray);
 }
 
+// ray_from for eight rays, one per lane, in the same expressions and order (ray_from,
+// segment_ray, make_screen_ray): the lanes whose screen ray is live, and their rays.
+inline int8 ray_from_lanes(float16 proj, int2 size, float near_plane, float far_plane, Lanes3 p, Lanes3 dir,
+                           ScreenRays8* r) {
+  float8 length_max = 1e6f * -p.z;
+  float8 len = select(select(length_max, (-far_plane - p.z) / dir.z, dir.z < 0.0f),
+                      fma((float8)(-near_plane), (float8)(1.001f), -p.z) / dir.z, dir.z > 0.0f);
+  len = fmin(len, length_max);
+  Lanes3 p1 = lanes3(p.x + dir.x * len, p.y + dir.y * len, p.z + dir.z * len);
+  float8 w0 = project_lanes(proj.scdef, p), w1 = project_lanes(proj.scdef, p1);
+  float8 k0 = 1.0f / w0, k1 = 1.0f / w1;
+  float8 n0x = project_lanes(proj.s0123, p) * k0, n0y = project_lanes(proj.s4567, p) * k0;
+  float8 n1x = project_lanes(proj.s0123, p1) * k1, n1y = project_lanes(proj.s4567, p1) * k1;
+  // ndc_to_pixel, each end in its own statement (no fused multiply-add across them).
+  r->s0x = (n0x + 1.0f) * 0.5f * (float)size.x;
+  r->s0y = (1.0f - n0y) * 0.5f * (float)size.y;
+  float8 s1x = (n1x + 1.0f) * 0.5f * (float)size.x;
+  float8 s1y = (1.0f - n1y) * 0.5f * (float)size.y;
+  r->dsx = s1x - r->s0x;
+  r->dsy = s1y - r->s0y;
+  r->q0x = p.x * k0, r->q0y = p.y * k0, r->q0z = p.z * k0, r->q0w = k0;
+  float8 e1x = p1.x * k1, e1y = p1.y * k1, e1z = p1.z * k1;
+  r->dqx = e1x - r->q0x, r->dqy = e1y - r->q0y, r->dqz = e1z - r->q0z, r->dqw = k1 - r->q0w;
+  float8 tex = (select((float8)(0.0f), (float8)(size.x), r->dsx > 0.0f) - r->s0x) / r->dsx;
+  float8 tey = (select((float8)(0.0f), (float8)(size.y), r->dsy > 0.0f) - r->s0y) / r->dsy;
+  tex = select(tex, (float8)(INFINITY), fabs(r->dsx) < 1e-12f);
+  tey = select(tey, (float8)(INFINITY), fabs(r->dsy) < 1e-12f);
+  float8 t_max = fmin(1.0f, fmin(tex, tey));
+  r->dsx *= t_max, r->dsy *= t_max;
+  r->dqx *= t_max, r->dqy *= t_max, r->dqz *= t_max, r->dqw *= t_max;
+  return (len > 0.0f) & (w0 > 0.0f) & (w1 > 0.0f) & isfinite(r->s0x) & isfinite(r->s0y) & isfinite(r->dsx) &
+         isfinite(r->dsy) & (fmax(fabs(r->dsx), fabs(r->dsy)) > 0.0f);
+}
+
 // Traces from view-space point p along unit direction dir (ray_from). Returns the hit's t on
 // *ray (negative on a miss) and the pixel hit in *cell.
 inline float trace_from(TraceScene* sc, float16 proj, float near_plane, float far_plane, float linear_step, float3 p,
@@ -677,7 +718,16 @@ __kernel void trace_rays(TraceParams params, __global const float* hzb, __global
       lane_dir[k] = (float3)(0.0f);
       lane_t[k] = -1.0f;
     }
-    for (int k = 0; k < SSRCL_TRACE_ROUND && next < end;) {
+    // The round's rays up to their directions, one by one; their directions eight at a time
+    // (sample_reflection_lanes); then their screen rays, one by one. A ray whose sample points
+    // below its surface leaves its lane to the next.
+    PixelRay drawn[SSRCL_TRACE_ROUND];
+    float o_x[SSRCL_TRACE_ROUND], o_y[SSRCL_TRACE_ROUND], o_z[SSRCL_TRACE_ROUND], n_x[SSRCL_TRACE_ROUND],
+        n_y[SSRCL_TRACE_ROUND], n_z[SSRCL_TRACE_ROUND], u_x[SSRCL_TRACE_ROUND], u_y[SSRCL_TRACE_ROUND],
+        a_k[SSRCL_TRACE_ROUND], p_x[SSRCL_TRACE_ROUND], p_y[SSRCL_TRACE_ROUND], p_z[SSRCL_TRACE_ROUND];
+    int m_k[SSRCL_TRACE_ROUND];
+    int drawn_count = 0;
+    while (drawn_count < SSRCL_TRACE_ROUND && next < end) {
       int gid = next++;
       int i = ray_list[gid / batch_size];
       int slot = gid % batch_size;
@@ -698,18 +748,53 @@ __kernel void trace_rays(TraceParams params, __global const float* hzb, __global
       if (dot(o, n) <= 0.0f) continue;  // normal faces away from the viewer: no defined reflection
 
       // Mirror-like pixels have one ray, the exact mirror direction.
-      bool mirror = nr.w <= mirror_roughness;
-      float alpha = fmax(roughness_to_alpha(nr.w, SSRCL_ROUGHNESS_MAPPING), 1e-4f);
-      float pdf;
-      float3 dir = sample_reflection(o, n, mirror, alpha, sample_2d(i, sample, seed), &pdf);
+      const int k = drawn_count++;
+      m_k[k] = nr.w <= mirror_roughness ? -1 : 0;
+      a_k[k] = fmax(roughness_to_alpha(nr.w, SSRCL_ROUGHNESS_MAPPING), 1e-4f);
+      float2 u = sample_2d(i, sample, seed);
+      p_x[k] = p.x, p_y[k] = p.y, p_z[k] = p.z;
+      o_x[k] = o.x, o_y[k] = o.y, o_z[k] = o.z, n_x[k] = n.x, n_y[k] = n.y, n_z[k] = n.z, u_x[k] = u.x, u_y[k] = u.y;
+      PixelRay made = {gid, sample, record, p, 0.0f, a_k[k], m_k[k] != 0, 1};
+      drawn[k] = made;
+    }
+    float d_x[SSRCL_TRACE_ROUND], d_y[SSRCL_TRACE_ROUND], d_z[SSRCL_TRACE_ROUND], pdf_k[SSRCL_TRACE_ROUND];
+    ScreenRay drawn_ray[SSRCL_TRACE_ROUND];
+    int drawn_live[SSRCL_TRACE_ROUND];
+    for (int k = 0; k < drawn_count; k += 8) {
+      float8 pdf;
+      Lanes3 d = sample_reflection_lanes(lanes3(vload8(0, o_x + k), vload8(0, o_y + k), vload8(0, o_z + k)),
+                                         lanes3(vload8(0, n_x + k), vload8(0, n_y + k), vload8(0, n_z + k)),
+                                         vload8(0, m_k + k), vload8(0, a_k + k), vload8(0, u_x + k), vload8(0, u_y + k),
+                                         &pdf);
+      vstore8(d.x, 0, d_x + k);
+      vstore8(d.y, 0, d_y + k);
+      vstore8(d.z, 0, d_z + k);
+      vstore8(pdf, 0, pdf_k + k);
+      ScreenRays8 r;
+      vstore8(ray_from_lanes(proj, size, near_plane, far_plane,
+                             lanes3(vload8(0, p_x + k), vload8(0, p_y + k), vload8(0, p_z + k)), d, &r),
+              0, drawn_live + k);
+      float f[12][8];
+      vstore8(r.s0x, 0, f[0]), vstore8(r.s0y, 0, f[1]), vstore8(r.dsx, 0, f[2]), vstore8(r.dsy, 0, f[3]);
+      vstore8(r.q0x, 0, f[4]), vstore8(r.q0y, 0, f[5]), vstore8(r.q0z, 0, f[6]), vstore8(r.q0w, 0, f[7]);
+      vstore8(r.dqx, 0, f[8]), vstore8(r.dqy, 0, f[9]), vstore8(r.dqz, 0, f[10]), vstore8(r.dqw, 0, f[11]);
+      for (int j = 0; j < 8; ++j) {
+        const ScreenRay one = {(float2)(f[0][j], f[1][j]), (float2)(f[2][j], f[3][j]),
+                               (float4)(f[4][j], f[5][j], f[6][j], f[7][j]), (float4)(f[8][j], f[9][j], f[10][j], f[11][j])};
+        drawn_ray[k + j] = one;
+      }
+    }
+    for (int j = 0, k = 0; j < drawn_count; ++j) {
+      float3 dir = (float3)(d_x[j], d_y[j], d_z[j]);
       if (!(dot(dir, dir) > 0.0f)) continue;
-      ray_hit[record] = (float4)(dir, -1.0f);
-      ray_radiance[record] = (float4)(0.0f, 0.0f, 0.0f, pdf);
-
-      PixelRay made = {gid, sample, record, p, pdf, alpha, mirror, 1};
+      PixelRay made = drawn[j];
+      made.pdf = pdf_k[j];
+      ray_hit[made.record] = (float4)(dir, -1.0f);
+      ray_radiance[made.record] = (float4)(0.0f, 0.0f, 0.0f, made.pdf);
       lane[k] = made;
       lane_dir[k] = dir;
-      lane_live[k] = ray_from(proj, size, near_plane, far_plane, p, dir, &lane_ray[k]);
+      lane_live[k] = drawn_live[j] != 0;
+      lane_ray[k] = drawn_ray[j];
       ++k;
     }
 #if SSRCL_TRACER == SSRCL_TRACER_HIZ
