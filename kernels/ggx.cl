@@ -36,6 +36,23 @@ inline float ggx_vndf_reflection_pdf(float3 o, float3 l, float alpha) {
   return len > 0.0f ? ggx_vndf_pdf_from_half(o, h / len, alpha) : 0.0f;
 }
 
+// The visible-normal sample's point (p1, p2) on the projected disk and w, its normal's share
+// along the stretched view vh (Heitz 2018), for one ray (T float) or eight in lanes (T float8,
+// kernels/ggx_lanes.cl): one text, so that both round alike. ux, uy: the random numbers, vz: vh.z.
+// One argument reduction for sine and cosine (PoCL's sincos equals its cos and sin bit for bit on
+// every phi this can take, 2 pi k / 2^24, at about half their cost).
+#define SSRCL_VNDF_DISK(T, ux, uy, vz)                               \
+  T p1, p2, w;                                                       \
+  {                                                                  \
+    T r_ = sqrt(ux), phi_ = 2.0f * SSRCL_PI * (uy), cos_phi_;        \
+    T sin_phi_ = sincos(phi_, &cos_phi_);                            \
+    p1 = r_ * cos_phi_;                                              \
+    p2 = r_ * sin_phi_;                                              \
+    T s_ = 0.5f * (1.0f + (vz));                                     \
+    p2 = (1.0f - s_) * sqrt(fmax(1.0f - p1 * p1, 0.0f)) + s_ * p2;   \
+    w = sqrt(fmax(1.0f - p1 * p1 - p2 * p2, 0.0f));                  \
+  }
+
 // Visible-normal sampling (Heitz 2018, "Sampling the GGX Distribution of Visible Normals"):
 // stretch the view to the unit-roughness configuration, sample the projected hemisphere there,
 // unstretch. Stable for alpha -> 0 (returns +Z) and for grazing o.
@@ -44,17 +61,8 @@ inline float3 ggx_sample_vndf(float3 o, float alpha, float2 u) {
   float lensq = vh.x * vh.x + vh.y * vh.y;
   float3 t1 = lensq > 0.0f ? SSRCL_FLOAT3(-vh.y, vh.x, 0.0f) * rsqrt(lensq) : SSRCL_FLOAT3(1.0f, 0.0f, 0.0f);
   float3 t2 = cross(vh, t1);
-  float r = sqrt(u.x);
-  float phi = 2.0f * SSRCL_PI * u.y;
-  // One argument reduction for both (PoCL's sincos equals its cos and sin bit for bit on every phi
-  // this can take, 2 pi k / 2^24, at about half their cost).
-  float cos_phi;
-  float sin_phi = sincos(phi, &cos_phi);
-  float p1 = r * cos_phi;
-  float p2 = r * sin_phi;
-  float s = 0.5f * (1.0f + vh.z);
-  p2 = (1.0f - s) * sqrt(fmax(1.0f - p1 * p1, 0.0f)) + s * p2;
-  float3 nh = p1 * t1 + p2 * t2 + sqrt(fmax(1.0f - p1 * p1 - p2 * p2, 0.0f)) * vh;
+  SSRCL_VNDF_DISK(float, u.x, u.y, vh.z)
+  float3 nh = p1 * t1 + p2 * t2 + w * vh;
   // z kept off 0: at alpha -> 0 a rounding to 0 would turn the mirror normal into a horizontal one.
   return normalize(SSRCL_FLOAT3(alpha * nh.x, alpha * nh.y, fmax(nh.z, 1e-6f)));
 }

@@ -48,15 +48,7 @@ inline Lanes3 ggx_sample_vndf_lanes(Lanes3 o, float8 alpha, float8 ux, float8 uy
   Lanes3 t1 = lanes3(select((float8)(1.0f), -vh.y * inv, tilted), select((float8)(0.0f), vh.x * inv, tilted),
                      select((float8)(0.0f), 0.0f * inv, tilted));
   Lanes3 t2 = cross_lanes(vh, t1);
-  float8 r = sqrt(ux);
-  float8 phi = 2.0f * SSRCL_PI * uy;
-  float8 cos_phi;
-  float8 sin_phi = sincos(phi, &cos_phi);
-  float8 p1 = r * cos_phi;
-  float8 p2 = r * sin_phi;
-  float8 s = 0.5f * (1.0f + vh.z);
-  p2 = (1.0f - s) * sqrt(fmax(1.0f - p1 * p1, 0.0f)) + s * p2;
-  float8 w = sqrt(fmax(1.0f - p1 * p1 - p2 * p2, 0.0f));
+  SSRCL_VNDF_DISK(float8, ux, uy, vh.z)
   Lanes3 nh = lanes3(p1 * t1.x + p2 * t2.x + w * vh.x, p1 * t1.y + p2 * t2.y + w * vh.y, p1 * t1.z + p2 * t2.z + w * vh.z);
   return normalize_lanes(lanes3(alpha * nh.x, alpha * nh.y, fmax(nh.z, 1e-6f)));
 }
