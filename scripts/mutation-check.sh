@@ -50,7 +50,7 @@ MUTANTS=(
   "pdf_alpha_x1.05|1|ggx_lanes.cl|ggx_vndf_pdf_from_half_lanes(ol, h, alpha), above)|ggx_vndf_pdf_from_half_lanes(ol, h, 1.05f * alpha), above)|$GLOSSY_FAST $GLOSSY"
   "smith_g_dropped|0|resolve.cl|(lobe.c * lz + s)|(2.0f * lz)|$GLOSSY_FAST $GLOSSY"
   "smith_g_uncorrelated|0|resolve.cl|(lobe.c * lz + s)|(0.5f * (1.0f + lobe.c) * (lz + s))|$GLOSSY_FAST $GLOSSY"
-  "smith_lambda_alpha_linear|0|ggx_lanes.cl|sqrt(1.0f + alpha * alpha * tan2)|sqrt(1.0f + alpha * tan2)|$GLOSSY_FAST $GLOSSY"
+  "ggx_d_alpha_linear|0|ggx_lanes.cl|float8 a2 = alpha * alpha;|float8 a2 = alpha;|$GLOSSY_FAST $GLOSSY"
   "hzb_max_reduction|1|hzb.cl|fmin(fmin(pyramid[i.x], pyramid[i.y]), fmin(pyramid[i.z], pyramid[i.w]))|fmax(fmax(pyramid[i.x], pyramid[i.y]), fmax(pyramid[i.z], pyramid[i.w]))|$HZB $DIFFERENTIAL"
   "back_min_reduction|1|back_pyramid.cl|fmax(fmax(a.y, b.y), fmax(d.y, e.y))|fmin(fmin(a.y, b.y), fmin(d.y, e.y))|$DIFFERENTIAL"
   "edge_fade_off|1|common.cl|if (!(edge_fade > 0.0f)) return 1.0f;|return 1.0f;|$EDGE"
