@@ -480,7 +480,7 @@ std::vector<std::string> listDir(const fs::path& dir) {
   return names;
 }
 
-TEST(WriteReflectionExr, RoundTripsAsFloatZip) {
+TEST(WriteReflectionExr, RoundTripsAsFloatRle) {
   test::TempDir dir;
   const Image rgba = filled(kWidth, kHeight, 4, 1.0f);
   Image distance = filled(kWidth, kHeight, 1, 100.0f);
@@ -491,7 +491,7 @@ TEST(WriteReflectionExr, RoundTripsAsFloatZip) {
   const test::ExrContents contents = test::readExr(file);
   EXPECT_EQ(contents.width, kWidth);
   EXPECT_EQ(contents.height, kHeight);
-  EXPECT_EQ(contents.compression, Imf::ZIP_COMPRESSION);
+  EXPECT_EQ(contents.compression, Imf::RLE_COMPRESSION);
   ASSERT_EQ(contents.channels.size(), 5u);
   const char* names[] = {"R", "G", "B", "A"};
   for (int c = 0; c < 4; ++c) {

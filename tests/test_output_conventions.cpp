@@ -145,7 +145,7 @@ TEST(HeaderCamera, WrittenAsStandardAttributesReadsBackTheSameCamera) {
   }
 }
 
-TEST_F(OutputConventions, DefaultsKeepPlainFloatZipChannelsAndCarryTheInputHeader) {
+TEST_F(OutputConventions, DefaultsKeepPlainFloatRleChannelsAndCarryTheInputHeader) {
   trace("", out);
   const ssrcl::test::ExrContents exr = ssrcl::test::readExr(out);
   std::set<std::string> names;
@@ -154,7 +154,7 @@ TEST_F(OutputConventions, DefaultsKeepPlainFloatZipChannelsAndCarryTheInputHeade
     EXPECT_EQ(channel.type, Imf::FLOAT) << name;
   }
   EXPECT_EQ(names, (std::set<std::string>{"R", "G", "B", "A", "distance"}));
-  EXPECT_EQ(exr.compression, Imf::ZIP_COMPRESSION);
+  EXPECT_EQ(exr.compression, Imf::RLE_COMPRESSION);
 
   const Imf::Header h = readHeader(out);
   EXPECT_EQ(h.dataWindow(), Imath::Box2i({kData.minX, kData.minY}, {kData.maxX, kData.maxY}));
@@ -269,7 +269,7 @@ TEST_F(BatchResume, RefusesOutputsMadeOtherwiseUnlessOverwrite) {
   expectRefused("--quality medium --output-layer refl", "preset draft");
   expectRefused("--quality draft --output-layer refl --spp 3", "samplesPerPixel");
   expectRefused("--quality draft --output-layer refl --half", "channel type float");
-  expectRefused("--quality draft --output-layer refl --compression piz", "compression zip");
+  expectRefused("--quality draft --output-layer refl --compression piz", "compression rle");
   expectRefused("--quality draft", "output layer");
 
   const std::string sky = std::string(SSRCL_SOURCE_DIR) + "/samples/corpus/environment/sky.exr";

@@ -89,7 +89,7 @@ std::string resumeMismatch(const std::string& output, const std::string& input, 
   if (alpha->second != o.half)
     return differs(output, "channel type", alpha->second ? "half" : "float", o.half ? "half" : "float");
   const std::string compression =
-      !o.compression.empty() ? o.compression : o.append ? describeExr(input).compression : "zip";
+      !o.compression.empty() ? o.compression : o.append ? describeExr(input).compression : defaultExrCompression();
   if (d.compression != compression) return differs(output, "compression", d.compression, compression);
   return {};
 }

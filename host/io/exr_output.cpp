@@ -120,7 +120,7 @@ void buildOutput(const Image& rgba, const Image& distance, const ReflectionExrOp
     if (!options.appendTo.empty()) {
       copyInput(options.appendTo, windows.data, out);
     } else {
-      out.header.compression() = Imf::ZIP_COMPRESSION;
+      out.header.compression() = compressionNamed(defaultExrCompression());
       if (!options.headerFrom.empty()) carryHeader(options.headerFrom, out.header);
     }
   } catch (const Error&) {
@@ -168,6 +168,11 @@ const std::vector<std::string>& exrCompressionNames() {
   static const std::vector<std::string> names = {"none", "rle", "zips", "zip", "piz",
                                                  "pxr24", "b44", "b44a", "dwaa", "dwab"};
   return names;
+}
+
+const std::string& defaultExrCompression() {
+  static const std::string name = "rle";
+  return name;
 }
 
 void writeReflectionExr(const std::string& path, const Image& rgba, const Image& distance,

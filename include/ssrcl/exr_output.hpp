@@ -15,7 +15,7 @@ struct ReflectionExrOptions {
   // Channel prefix: "" writes R,G,B,A,distance; "refl" writes refl.R, ..., refl.distance.
   std::string layer;
   bool half = false;  // half-float pass channels (appended input channels keep their own type)
-  // One of exrCompressionNames(); empty: zip, or, when appending, the appended file's.
+  // One of exrCompressionNames(); empty: defaultExrCompression(), or, when appending, the appended file's.
   std::string compression;
   // Non-empty: the output is a copy of this single-part EXR (every channel with its type, every
   // attribute) with the pass's channels added; its data window must be the images'.
@@ -41,6 +41,11 @@ void writeReflectionExr(const std::string& path, const Image& rgba, const Image&
 
 // The values --compression takes, in OpenEXR's order.
 const std::vector<std::string>& exrCompressionNames();
+
+// The pass's compression when none is asked for (and nothing is appended to): "rle". Lossless,
+// read by every OpenEXR reader; the pass's float channels are near noise that zlib barely
+// shrinks, so ZIP made files only 4-7% smaller at ten times the time (docs/BENCHMARKS.md).
+const std::string& defaultExrCompression();
 
 // What an existing EXR says about how it was written, for resuming a batch.
 struct ExrDescription {

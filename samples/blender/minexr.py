@@ -1,8 +1,8 @@
 """Minimal pure-Python OpenEXR reader for the sample checks.
 
 Neither system Python nor Debian's Blender Python has numpy or an OpenEXR module here, so this
-reads just what Blender writes for the samples: single-part scanline files, HALF/FLOAT/UINT
-channels, compression NONE, ZIPS or ZIP. Pixels come back top row first (EXR y grows downwards),
+reads just what Blender writes for the samples and ssrcl for its pass: single-part scanline files,
+HALF/FLOAT/UINT channels, compression NONE, RLE, ZIPS or ZIP. Pixels come back top row first (EXR y grows downwards),
 as flat lists indexed [y * width + x].
 """
 import struct
@@ -11,7 +11,7 @@ import zlib
 _PIXEL_TYPES = {0: ("UINT", 4, "I"), 1: ("HALF", 2, "e"), 2: ("FLOAT", 4, "f")}
 _COMPRESSION = {0: "NONE", 1: "RLE", 2: "ZIPS", 3: "ZIP", 4: "PIZ", 5: "PXR24", 6: "B44",
                 7: "B44A", 8: "DWAA", 9: "DWAB"}
-_LINES_PER_BLOCK = {"NONE": 1, "ZIPS": 1, "ZIP": 16}
+_LINES_PER_BLOCK = {"NONE": 1, "RLE": 1, "ZIPS": 1, "ZIP": 16}
 
 
 class ExrFile:
@@ -68,7 +68,7 @@ class ExrFile:
             count = min(lines, self._ymin + self.height - y)
             expected = count * self.width * sum(_PIXEL_TYPES[t][1] for _, t in self.channels)
             if size < expected:  # a block is stored raw when compression would not shrink it
-                raw = _unzip(raw)
+                raw = _unrle(raw) if self.compression == "RLE" else _unzip(raw)
             pos = 0
             # Within a block: for each scanline, every channel's row in chlist (name) order.
             for _ in range(count):
@@ -100,7 +100,25 @@ def _parse_chlist(blob):
 
 def _unzip(raw):
     # OpenEXR ZIP: zlib, then undo the byte-delta predictor, then re-interleave the two halves.
-    t = bytearray(zlib.decompress(raw))
+    return _unpredict(bytearray(zlib.decompress(raw)))
+
+
+def _unrle(raw):
+    # OpenEXR RLE: runs, each a signed count byte n (n >= 0: the next byte n + 1 times; n < 0: the
+    # next -n bytes as they are), then the same predictor and halves as ZIP.
+    t, i = bytearray(), 0
+    while i < len(raw):
+        n = raw[i] - 256 if raw[i] > 127 else raw[i]
+        if n < 0:
+            t += raw[i + 1:i + 1 - n]
+            i += 1 - n
+        else:
+            t += raw[i + 1:i + 2] * (n + 1)
+            i += 2
+    return _unpredict(t)
+
+
+def _unpredict(t):
     acc = 0
     for i in range(len(t)):
         acc = (acc + t[i] - 128) & 0xFF if i else t[0]
