@@ -49,12 +49,13 @@ inline Lanes3 ggx_sample_vndf_lanes(Lanes3 o, float8 alpha, float8 ux, float8 uy
                      select((float8)(0.0f), 0.0f * inv, tilted));
   Lanes3 t2 = cross_lanes(vh, t1);
   SSRCL_VNDF_DISK(float8, ux, uy, vh.z)
-  Lanes3 nh = lanes3(p1 * t1.x + p2 * t2.x + w * vh.x, p1 * t1.y + p2 * t2.y + w * vh.y, p1 * t1.z + p2 * t2.z + w * vh.z);
+  Lanes3 nh = lanes3(p1 * t1.x + p2 * t2.x + w * vh.x, p1 * t1.y + p2 * t2.y + w * vh.y,
+                     p1 * t1.z + p2 * t2.z + w * vh.z);
   return normalize_lanes(lanes3(alpha * nh.x, alpha * nh.y, fmax(nh.z, 1e-6f)));
 }
 
-// sample_reflection per lane: the direction in *dir (zero where the sample points below the
-// surface) and its pdf (0 for mirror lanes).
+// sample_reflection per lane: the direction (zero where the sample points below the surface), and
+// its pdf in *pdf (0 for mirror lanes).
 inline Lanes3 sample_reflection_lanes(Lanes3 o, Lanes3 n, int8 mirror, float8 alpha, float8 ux, float8 uy,
                                       float8* pdf) {
   float8 on = dot3_lanes(o, n);

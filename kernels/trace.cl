@@ -254,17 +254,10 @@ inline float8 cell_exit8(const ScreenRays8* r, float8 t, float8 nudge, float8 ce
   return fmin(tx, ty);
 }
 
-// dot(float3) as PoCL computes it: three rounded products, z + (x + y); no FMA (the products are
-// statements of their own).
-inline float8 dot8(float8 ax, float8 ay, float8 az, float8 bx, float8 by, float8 bz) {
-  float8 x = ax * bx, y = ay * by, z = az * bz;
-  return z + (x + y);
-}
-
 // plane_side per lane.
 inline float8 plane_side8(const ScreenRays8* r, float8 t, float8 px, float8 py, float8 pz, float8 pw) {
   float8 qx = r->q0x + t * r->dqx, qy = r->q0y + t * r->dqy, qz = r->q0z + t * r->dqz, qw = r->q0w + t * r->dqw;
-  return dot8(qx, qy, qz, px, py, pz) - qw * pw;
+  return dot_lanes(qx, qy, qz, px, py, pz) - qw * pw;
 }
 
 // hit_pixel per lane, for the lanes in `lanes` (the others' results are not used).
@@ -277,7 +270,7 @@ inline float8 hit_pixel8(const TraceScene* sc, const ScreenRays8* r, float8 dx, 
   int8 sky = pw == -INFINITY;  // SSRCL_NO_PLANE
   float8 g_in = plane_side8(r, t_in, px, py, pz, pw), g_out = plane_side8(r, t_out, px, py, pz, pw);
   *in_front = sky | (g_out > 0.0f);
-  int8 facing = ~sky & (dot8(px, py, pz, dx, dy, dz) < 0.0f);
+  int8 facing = ~sky & (dot_lanes(px, py, pz, dx, dy, dz) < 0.0f);
   int8 crossing = facing & (g_in > 0.0f) & (g_out <= 0.0f);
   int8 within = facing & ~crossing & (g_in <= 0.0f) & (-g_in <= r->q0w + t_in * r->dqw);
   int8 passed = lanes & facing & ~crossing & ~within;
@@ -780,7 +773,8 @@ __kernel void trace_rays(TraceParams params, __global const float* hzb, __global
       vstore8(r.dqx, 0, f[8]), vstore8(r.dqy, 0, f[9]), vstore8(r.dqz, 0, f[10]), vstore8(r.dqw, 0, f[11]);
       for (int j = 0; j < 8; ++j) {
         const ScreenRay one = {(float2)(f[0][j], f[1][j]), (float2)(f[2][j], f[3][j]),
-                               (float4)(f[4][j], f[5][j], f[6][j], f[7][j]), (float4)(f[8][j], f[9][j], f[10][j], f[11][j])};
+                               (float4)(f[4][j], f[5][j], f[6][j], f[7][j]),
+                               (float4)(f[8][j], f[9][j], f[10][j], f[11][j])};
         drawn_ray[k + j] = one;
       }
     }

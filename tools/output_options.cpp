@@ -22,7 +22,7 @@ void addOutputOptions(CLI::App& cmd, OutputOptions& o) {
       ->group(g);
   cmd.add_flag("--half", o.half, "Half-float reflection channels (default: float)")->group(g);
   cmd.add_option("--compression", o.compression,
-                 "EXR compression (default: rle, or the input's with --append)")
+                 "EXR compression (default: " + defaultExrCompression() + ", or the input's with --append)")
       ->group(g)
       ->check(CLI::IsMember(exrCompressionNames()));
 }

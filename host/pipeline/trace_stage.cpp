@@ -63,9 +63,9 @@ void TraceStage::configure(Device::Impl& device, const TraceSettings& s, bool ha
   if (views) defines.push_back("SSRCL_VIEWS=1");  // only then: programs without views stay as they were
   if (materials_) defines.push_back("SSRCL_MATERIAL_HITS=1");  // likewise without materials
   if (backDepth) defines.push_back("SSRCL_BACK_KNOWN=1");  // likewise without a back-face pass
-  const cl::Program& program = device.program(
-      {"ssrcl_shared.h", "common.cl", "sequence.cl", "ggx.cl", "ggx_lanes.cl", "color_lookup.cl", "surface_plane.cl", "trace.cl"},
-      defines);
+  const cl::Program& program = device.program({"ssrcl_shared.h", "common.cl", "sequence.cl", "ggx.cl", "ggx_lanes.cl",
+                                               "color_lookup.cl", "surface_plane.cl", "trace.cl"},
+                                              defines);
   kernel_ = cl::Kernel(program, "trace_rays");
   batch_ = s.samplesPerPixel;
 }

@@ -44,8 +44,8 @@ void ViewStage::configure(Device::Impl& device, const TraceSettings& s, size_t v
   units_.resize(viewCount);
   if (viewCount == 0) return;  // nothing to build: clang preprocesses a program even when PoCL has it cached
   program_ = device.program(
-      {"ssrcl_shared.h", "common.cl", "sequence.cl", "ggx.cl", "ggx_lanes.cl", "color_lookup.cl", "surface_plane.cl", "trace.cl",
-       "view_trace.cl"},
+      {"ssrcl_shared.h", "common.cl", "sequence.cl", "ggx.cl", "ggx_lanes.cl", "color_lookup.cl", "surface_plane.cl",
+       "trace.cl", "view_trace.cl"},
       {tracerDefine(s.tracer), roughnessMappingDefine(s.roughnessMapping), "SSRCL_COUNT_WORK=0", "SSRCL_VIEWS=1"});
   for (auto& unit : units_) {
     if (!unit) unit = std::make_unique<Unit>();
