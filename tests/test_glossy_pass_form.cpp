@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <glm/glm.hpp>
 
+#include "shading/specular_albedo_tables.hpp"
 #include "ssrcl/ssrcl.hpp"
 #include "support/cycles_reference.hpp"
 #include "support/exr_fixtures.hpp"
@@ -65,6 +66,28 @@ TEST(SpecularAlbedo, MatchesQuadratureOfCyclesLobe) {
         EXPECT_NEAR(ssrcl::specularAlbedo(roughness, cosO)(f0), truth, 3e-3)
             << "r " << roughness << " cos " << cosO << " F0 " << f0;
       }
+}
+
+// The tables the build integrated hold, bit for bit, what the library's integral gives at their
+// nodes (a generator built or run otherwise than the library would show here).
+TEST(SpecularAlbedo, BuiltTablesAreTheIntegralAtTheirNodes) {
+  namespace d = ssrcl::detail;
+  for (int r = 0; r <= d::kAlbedoRoughSteps; r += 7)
+    for (int c = 0; c <= d::kAlbedoCosSteps; c += 37) {
+      double cosO, alpha;
+      d::albedoRowArgs(r, c, &cosO, &alpha);
+      const ssrcl::SpecularAlbedo e = ssrcl::integrateSpecularAlbedo(cosO, alpha, 64);
+      EXPECT_EQ(d::kSpecularAlbedoRows[r][c][0], e.scale) << r << " " << c;
+      EXPECT_EQ(d::kSpecularAlbedoRows[r][c][1], e.bias) << r << " " << c;
+    }
+  for (int r = 0; r <= SSRCL_ALBEDO_STEPS; r += 4)
+    for (int c = 0; c <= SSRCL_ALBEDO_STEPS; c += 5) {
+      double cosO, alpha;
+      d::albedoNodeArgs(r, c, &cosO, &alpha);
+      const ssrcl::SpecularAlbedo e = ssrcl::integrateSpecularAlbedo(cosO, alpha, 64);
+      EXPECT_EQ(d::kSpecularAlbedoNodes[r][c][0], e.scale) << r << " " << c;
+      EXPECT_EQ(d::kSpecularAlbedoNodes[r][c][1], e.bias) << r << " " << c;
+    }
 }
 
 // A mirror (roughness 0) reflects exactly the Fresnel at the view angle.

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "settings_validation.hpp"
-#include "ssrcl/specular_albedo.hpp"
+#include "shading/specular_albedo_tables.hpp"
 
 namespace ssrcl::detail {
 std::string tracerDefine(Tracer t) {
@@ -23,22 +23,15 @@ constexpr size_t kRayRecordBudget = size_t(512) << 20;
 
 constexpr size_t kAlbedoEntries = (SSRCL_ALBEDO_STEPS + 1) * (SSRCL_ALBEDO_STEPS + 1);
 
-// E's (scale, bias) at the table's nodes (ssrcl_shared.h), integrated once per process: 1089
-// integrals at 64 strata (~0.1 s), exact at the nodes rather than read from specularAlbedo's own
-// table. Read bilinearly it is within 1.5% of the integral everywhere (the worst at roughness
-// 0.05, cos 0.01), within 0.5% at cos >= 0.1.
+// E's (scale, bias) at the table's nodes (ssrcl_shared.h), as the kernel reads them. Read
+// bilinearly it is within 1.5% of the integral everywhere (the worst at roughness 0.05, cos 0.01),
+// within 0.5% at cos >= 0.1.
 const std::vector<cl_float2>& albedoTable() {
   static const std::vector<cl_float2> table = [] {
     std::vector<cl_float2> t;
     t.reserve(kAlbedoEntries);
-    for (int r = 0; r <= SSRCL_ALBEDO_STEPS; ++r)
-      for (int c = 0; c <= SSRCL_ALBEDO_STEPS; ++c) {
-        const double sqrtAlpha = double(r) / SSRCL_ALBEDO_STEPS, sqrtCos = double(c) / SSRCL_ALBEDO_STEPS;
-        // cos 0 is the grazing limit: nudged inside, as specularAlbedo's table does.
-        const SpecularAlbedo e =
-            integrateSpecularAlbedo(std::max(sqrtCos * sqrtCos, 1e-4), std::max(sqrtAlpha * sqrtAlpha, 1e-4), 64);
-        t.push_back({{float(e.scale), float(e.bias)}});
-      }
+    for (const auto& row : detail::kSpecularAlbedoNodes)
+      for (const auto& e : row) t.push_back({{float(e[0]), float(e[1])}});
     return t;
   }();
   return table;

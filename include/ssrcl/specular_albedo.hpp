@@ -22,8 +22,8 @@ struct SpecularAlbedo {
 SpecularAlbedo integrateSpecularAlbedo(double cosO, double alpha, int strata = 128);
 
 // The same from a table over roughness (alpha = roughness^2, 1/64 steps) and cos(theta_o) (1/256
-// steps) integrated at 64 strata, read bilinearly; rows are integrated when first needed.
-// Thread-safe. Inputs clamped to [0, 1]; cos 0 is the grazing limit.
+// steps) integrated at 64 strata when the library is built, read bilinearly. Inputs clamped to
+// [0, 1]; cos 0 is the grazing limit.
 SpecularAlbedo specularAlbedo(double roughness, double cosO);
 
 // F0 of Cycles 3.4's Principled BSDF at Specular 0.5 and Specular Tint 0 (the defaults):
