@@ -50,10 +50,8 @@ Vec3 directionAt(double u, double v) {
   return {std::cos(elevation) * std::cos(phi), std::cos(elevation) * std::sin(phi), std::sin(elevation)};
 }
 
-// Bilinear read at direction d: wraps around in azimuth, clamps at the poles.
-void sampleBilinear(const Image& img, Vec3 d, double out[3]) {
-  const double u = 0.5 - std::atan2(d.y, d.x) / (2 * kPi);
-  const double v = 0.5 - std::atan2(d.z, std::hypot(d.x, d.y)) / kPi;
+// Bilinear read at image position (u, v) in [0, 1]^2: wraps around in azimuth, clamps at the poles.
+void sampleBilinear(const Image& img, double u, double v, double out[3]) {
   const double x = u * img.width - 0.5, y = std::clamp(v * img.height - 0.5, 0.0, img.height - 1.0);
   const double fx = x - std::floor(x), fy = y - std::floor(y);
   const int x0 = ((int(std::floor(x)) % img.width) + img.width) % img.width, x1 = (x0 + 1) % img.width;
@@ -111,27 +109,52 @@ Image convolveLevel(const std::vector<Image>& mips, int width, double alpha, int
   }
   // Solid angle of a level-0 texel at the equator; it shrinks with cos(latitude) toward the poles.
   const double texelAngle = (2 * kPi / mips[0].width) * (kPi / mips[0].height);
+  // Where a lobe sample of direction l reads: its image position and the mip its solid angle picks.
+  struct LobeRead {
+    double u, v, lod, nl;
+  };
+  auto lobeRead = [&](Vec3 l, const LobeSample& s) {
+    const double horizontal = std::hypot(l.x, l.y);
+    const double lod = s.halfLog2Angle - 0.5 * std::log2(texelAngle * std::max(horizontal, 1e-3));
+    return LobeRead{0.5 - std::atan2(l.y, l.x) / (2 * kPi), 0.5 - std::atan2(l.z, horizontal) / kPi,
+                    std::clamp(lod, 0.0, mips.size() - 1.0), s.nl};
+  };
+  // The lobe of the texel at u = 0.5 (azimuth 0) in row v, or where `u` is given, of that texel.
+  auto lobeReads = [&](double u, double v, std::vector<LobeRead>& reads) {
+    const Vec3 n = directionAt(u, v);
+    const Vec3 t = normalize(cross(std::abs(n.z) < 0.999 ? Vec3{0, 0, 1} : Vec3{1, 0, 0}, n));
+    const Vec3 b = cross(n, t);
+    reads.clear();
+    for (const LobeSample& s : lobe) {
+      const Vec3 h = s.x * t + (s.y * b + s.z * n);
+      reads.push_back(lobeRead((2 * s.z) * h + (-1.0) * n, s));
+    }
+  };
   auto rows = [&](int first, int step) {
-    for (int y = first; y < out.height; y += step)
+    std::vector<LobeRead> reads;
+    for (int y = first; y < out.height; y += step) {
+      const double v = (y + 0.5) / out.height;
+      // Off the poles a texel's frame is the row's first frame turned about the polar axis by the
+      // texel's azimuth, and so are its lobe's directions: one set of angles and mips serves the
+      // row, shifted in u (the arc tangents per texel were most of the prefilter's time).
+      const bool turned = std::abs(directionAt(0.5, v).z) < 0.999;
+      if (turned) lobeReads(0.5, v, reads);
       for (int x = 0; x < out.width; ++x) {
-        const Vec3 n = directionAt((x + 0.5) / out.width, (y + 0.5) / out.height);
-        const Vec3 t = normalize(cross(std::abs(n.z) < 0.999 ? Vec3{0, 0, 1} : Vec3{1, 0, 0}, n));
-        const Vec3 b = cross(n, t);
+        const double u = (x + 0.5) / out.width;
+        if (!turned) lobeReads(u, v, reads);
+        const double shift = turned ? u - 0.5 : 0.0;
         double sum[3] = {0, 0, 0}, weight = 0;
-        for (const LobeSample& s : lobe) {
-          const Vec3 h = s.x * t + (s.y * b + s.z * n);
-          const Vec3 l = (2 * s.z) * h + (-1.0) * n;
-          const double texel = texelAngle * std::max(std::hypot(l.x, l.y), 1e-3);
-          const double lod = std::clamp(s.halfLog2Angle - 0.5 * std::log2(texel), 0.0, mips.size() - 1.0);
-          const int m0 = int(lod), m1 = std::min<int>(m0 + 1, int(mips.size()) - 1);
+        for (const LobeRead& r : reads) {
+          const int m0 = int(r.lod), m1 = std::min<int>(m0 + 1, int(mips.size()) - 1);
           double c0[3], c1[3];
-          sampleBilinear(mips[m0], l, c0);
-          sampleBilinear(mips[m1], l, c1);
-          for (int c = 0; c < 3; ++c) sum[c] += s.nl * (c0[c] + (lod - m0) * (c1[c] - c0[c]));
-          weight += s.nl;
+          sampleBilinear(mips[m0], r.u + shift, r.v, c0);
+          sampleBilinear(mips[m1], r.u + shift, r.v, c1);
+          for (int c = 0; c < 3; ++c) sum[c] += r.nl * (c0[c] + (r.lod - m0) * (c1[c] - c0[c]));
+          weight += r.nl;
         }
         for (int c = 0; c < 3; ++c) out.at(x, y, c) = float(sum[c] / weight);
       }
+    }
   };
   const int threads = int(std::clamp(std::thread::hardware_concurrency(), 1u, 16u));
   std::vector<std::thread> pool;
