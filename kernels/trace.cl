@@ -34,6 +34,12 @@ typedef struct {
   float4 q0, dq;  // xyz = Q, w = k
 } ScreenRay;
 
+// The ray of a lane that has none: traced with the others, its results unused.
+inline ScreenRay no_ray(void) {
+  const ScreenRay none = {(float2)(0.0f), (float2)(0.0f), (float4)(0.0f), (float4)(0.0f)};
+  return none;
+}
+
 inline float4 ray_q(const ScreenRay* r, float t) { return r->q0 + t * r->dq; }
 inline float ray_depth(const ScreenRay* r, float t) { float4 q = ray_q(r, t); return -q.z / q.w; }
 inline float3 ray_point(const ScreenRay* r, float t) { float4 q = ray_q(r, t); return q.xyz / q.w; }
@@ -636,22 +642,35 @@ inline float2 specular_albedo(__global const float2* table, float alpha, float c
 }
 
 // One more ray from a hit on pixel q (normal and roughness nq, GGX alpha_q) at view-space `hit`,
-// for the light it reflects back along the arriving ray `dir`: the screen colour it finds in xyz
-// and that hit's edge confidence in w, or w = -1 where it finds nothing.
-inline float4 trace_bounce(TraceScene* sc, float16 proj, float near_plane, float far_plane, float linear_step,
-                           float edge_fade, float mirror_roughness, __global const float4* color_pyramid, float3 hit,
-                           float3 dir, float4 nq, float alpha_q, int q, int sample, uint seed) {
+// for the light it reflects back along the arriving ray `dir`: whether there is one to trace, and
+// its screen ray and direction.
+inline bool bounce_ray(float16 proj, int2 size, float near_plane, float far_plane, float mirror_roughness, float3 hit,
+                       float3 dir, float4 nq, float alpha_q, int q, int sample, uint seed, ScreenRay* ray2,
+                       float3* dir2) {
   float pdf2;
-  float3 dir2 = sample_reflection(-dir, nq.xyz, nq.w <= mirror_roughness, alpha_q, sample_2d(q, sample, seed + 1u),
-                                  &pdf2);
-  ScreenRay ray2;
-  int2 cell2;
-  float t2 = dot(dir2, dir2) > 0.0f ? trace_from(sc, proj, near_plane, far_plane, linear_step, hit, dir2, &ray2, &cell2)
-                                    : -1.0f;
+  *dir2 = sample_reflection(-dir, nq.xyz, nq.w <= mirror_roughness, alpha_q, sample_2d(q, sample, seed + 1u), &pdf2);
+  return dot(*dir2, *dir2) > 0.0f && ray_from(proj, size, near_plane, far_plane, hit, *dir2, ray2);
+}
+
+// What that ray finds at t2 (negative: nothing) on pixel cell2: the screen colour in xyz and the
+// hit's edge confidence in w, or w = -1.
+inline float4 bounce_found(__global const float4* color_pyramid, int2 size, float edge_fade, const ScreenRay* ray2,
+                           float t2, int2 cell2) {
   if (t2 < 0.0f) return (float4)(0.0f, 0.0f, 0.0f, -1.0f);
-  cell2 = clamp(cell2, (int2)(0, 0), sc->size - 1);
-  return (float4)(color_pyramid[cell2.y * sc->size.x + cell2.x].xyz,
-                  edge_confidence(ray_screen(&ray2, t2), sc->size, edge_fade));
+  cell2 = clamp(cell2, (int2)(0, 0), size - 1);
+  return (float4)(color_pyramid[cell2.y * size.x + cell2.x].xyz, edge_confidence(ray_screen(ray2, t2), size, edge_fade));
+}
+
+// Traces a round's live rays (lanes without one are left as they are): Hi-Z in packets, or the
+// reference tracers a ray at a time.
+inline void trace_round(TraceScene* sc, float linear_step, const ScreenRay* rays, const float3* dirs, const int* live,
+                        float* t_hit, int2* hit_cell) {
+#if SSRCL_TRACER == SSRCL_TRACER_HIZ
+  trace_hiz_packets(sc, rays, dirs, live, t_hit, hit_cell);
+#else
+  for (int k = 0; k < SSRCL_TRACE_ROUND; ++k)
+    if (live[k]) t_hit[k] = trace_ray(&sc[k], linear_step, &rays[k], dirs[k], &hit_cell[k]);
+#endif
 }
 
 // Counting mode (SSRCL_COUNT_WORK): texel reads and the iteration histogram (ssrcl_shared.h).
@@ -702,12 +721,11 @@ __kernel void trace_rays(TraceParams params, __global const float* hzb, __global
     float lane_t[SSRCL_TRACE_ROUND];
     int2 lane_cell[SSRCL_TRACE_ROUND];
     for (int k = 0; k < SSRCL_TRACE_ROUND; ++k) {
-      const ScreenRay none = {(float2)(0.0f), (float2)(0.0f), (float4)(0.0f), (float4)(0.0f)};
       const TraceScene sc = {size, hzb, levels, level_count, planes, normals, params.max_iterations, 0, 0, 0, 0, 0,
                              range, guess, 0, -1.0f, (int2)(0)};
       scene[k] = sc;  // every lane's: the packets read the frame from scene[0]
       lane[k].traced = lane_live[k] = 0;
-      lane_ray[k] = none;  // lanes without a ray are traced too, their results unused
+      lane_ray[k] = no_ray();
       lane_dir[k] = (float3)(0.0f);
       lane_t[k] = -1.0f;
     }
@@ -791,49 +809,59 @@ __kernel void trace_rays(TraceParams params, __global const float* hzb, __global
       lane_ray[k] = drawn_ray[j];
       ++k;
     }
-#if SSRCL_TRACER == SSRCL_TRACER_HIZ
-    trace_hiz_packets(scene, lane_ray, lane_dir, lane_live, lane_t, lane_cell);
-#else
-    for (int k = 0; k < SSRCL_TRACE_ROUND; ++k)
-      if (lane_live[k]) lane_t[k] = trace_ray(&scene[k], linear_step, &lane_ray[k], lane_dir[k], &lane_cell[k]);
-#endif
+    trace_round(scene, linear_step, lane_ray, lane_dir, lane_live, lane_t, lane_cell);
 
+    // Shading, in two passes around the second rays of hits on glossy pixels, which are traced
+    // together as the first were: what each hit needs of its pixel, then what the second finds.
+    float4 hit_radiance[SSRCL_TRACE_ROUND];
+    float3 hit_point[SSRCL_TRACE_ROUND];
+    float2 hit_screen[SSRCL_TRACE_ROUND];
+    int hit_glossy[SSRCL_TRACE_ROUND];  // the hit is on a glossy pixel whose base is known
+    ScreenRay second_ray[SSRCL_TRACE_ROUND];
+    float3 second_dir[SSRCL_TRACE_ROUND];
+    int second_live[SSRCL_TRACE_ROUND];
+    float second_t[SSRCL_TRACE_ROUND];
+    int2 second_cell[SSRCL_TRACE_ROUND];
     for (int k = 0; k < SSRCL_TRACE_ROUND; ++k) {
+      hit_glossy[k] = second_live[k] = 0;
+      second_ray[k] = no_ray();
+      second_dir[k] = (float3)(0.0f);
+      second_t[k] = -1.0f;
       if (!lane[k].traced) continue;
-      const int gid = lane[k].gid, sample = lane[k].sample;
-      const size_t record = lane[k].record;
+      const int sample = lane[k].sample;
       const float3 p = lane[k].p, dir = lane_dir[k];
-      const float pdf = lane[k].pdf, alpha = lane[k].alpha;
+      const float alpha = lane[k].alpha;
       const bool mirror = lane[k].mirror;
-      TraceScene sc = scene[k];
+      const TraceScene* sc = &scene[k];
       const ScreenRay ray = lane_ray[k];
       int2 cell = lane_cell[k];  // the pixel whose surface the ray hit; its colour is the hit's colour
       float t = lane_t[k];
 #if SSRCL_BACK_KNOWN
-      if (t < 0.0f && sc.past) {
-        t = sc.past_t;
-        cell = sc.past_cell;
+      if (t < 0.0f && sc->past) {
+        t = sc->past_t;
+        cell = sc->past_cell;
       }
 #endif
 #if SSRCL_VIEWS
       // Only the primary ray's passage counts: the glossy hit's second ray below only shades the hit.
-      ray_state[record] = (sc.behind ? SSRCL_RAY_BEHIND : 0) | (t >= 0.0f && sc.thick ? SSRCL_RAY_THICK : 0);
+      ray_state[lane[k].record] = (sc->behind ? SSRCL_RAY_BEHIND : 0) | (t >= 0.0f && sc->thick ? SSRCL_RAY_THICK : 0);
 #endif
-      if (t < 0.0f) {
-        if (SSRCL_COUNT_WORK) count_work(work_counters, gid, &sc);
-        continue;
-      }
+      lane_t[k] = t;
+      if (t < 0.0f) continue;
 
       float2 s = ray_screen(&ray, t);
       float3 hit = ray_point(&ray, t);
       cell = clamp(cell, (int2)(0, 0), size - 1);
+      lane_cell[k] = cell;
       int q = cell.y * size.x + cell.x;
       // A prefiltered hit is looked up once the batch's hits are counted (hit_prefilter.cl): recorded
       // as the screen position and the mip of its footprint.
-      bool prefiltered = prefiltered_hit(&sc, q, mirror ? 0.0f : alpha, params.cone_scale);
-      float4 radiance = prefiltered
-                            ? (float4)(s, -1.0f - hit_mip_level(&sc, proj, &ray, t, length(hit - p), alpha, params.cone_scale), 0.0f)
+      bool prefiltered = prefiltered_hit(sc, q, mirror ? 0.0f : alpha, params.cone_scale);
+      hit_radiance[k] = prefiltered
+                            ? (float4)(s, -1.0f - hit_mip_level(sc, proj, &ray, t, length(hit - p), alpha, params.cone_scale), 0.0f)
                             : color_pyramid[q];
+      hit_point[k] = hit;
+      hit_screen[k] = s;
       // A hit on a glossy pixel: its screen colour is what it reflects toward the camera, not toward
       // this pixel. With its non-reflected radiance known (`base`), the hit's radiance is that plus
       // its specular part, what one more ray, reflected at the hit, finds, times its specular colour.
@@ -843,11 +871,28 @@ __kernel void trace_rays(TraceParams params, __global const float* hzb, __global
       // one second ray shows there as noise (mirror sample: floor within 25% of Cycles 0.90 -> 0.74).
       float4 nq = normals[q];
       bool bounce = !mirror || nq.w <= mirror_roughness;
-      if (!prefiltered && params.has_base && nq.w < params.glossy_hit_roughness && (SSRCL_MATERIAL_HITS || bounce)) {
-        float alpha_q = fmax(roughness_to_alpha(nq.w, SSRCL_ROUGHNESS_MAPPING), 1e-4f);
-        float4 found = bounce ? trace_bounce(&sc, proj, near_plane, far_plane, linear_step, edge_fade, mirror_roughness,
-                                             color_pyramid, hit, dir, nq, alpha_q, q, sample, seed)
-                              : (float4)(0.0f, 0.0f, 0.0f, -1.0f);
+      hit_glossy[k] =
+          !prefiltered && params.has_base && nq.w < params.glossy_hit_roughness && (SSRCL_MATERIAL_HITS || bounce);
+      if (hit_glossy[k] && bounce)
+        second_live[k] = bounce_ray(proj, size, near_plane, far_plane, mirror_roughness, hit, dir, nq,
+                                    fmax(roughness_to_alpha(nq.w, SSRCL_ROUGHNESS_MAPPING), 1e-4f), q, sample, seed,
+                                    &second_ray[k], &second_dir[k]);
+    }
+    // A second ray's budget of steps is what its first left (scene[k].iterations).
+    trace_round(scene, linear_step, second_ray, second_dir, second_live, second_t, second_cell);
+
+    for (int k = 0; k < SSRCL_TRACE_ROUND; ++k) {
+      if (!lane[k].traced) continue;
+      if (SSRCL_COUNT_WORK) count_work(work_counters, lane[k].gid, &scene[k]);
+      if (lane_t[k] < 0.0f) continue;
+      const int2 cell = lane_cell[k];
+      const int q = cell.y * size.x + cell.x;
+      const float3 dir = lane_dir[k];
+      float4 radiance = hit_radiance[k];
+      if (hit_glossy[k]) {
+        const float4 nq = normals[q];
+        const float alpha_q = fmax(roughness_to_alpha(nq.w, SSRCL_ROUGHNESS_MAPPING), 1e-4f);
+        const float4 found = bounce_found(color_pyramid, size, edge_fade, &second_ray[k], second_t[k], second_cell[k]);
 #if SSRCL_MATERIAL_HITS
         // The specular colour times E(the hit's F0, its roughness, toward this pixel) times what the
         // ray finds: Cycles' GlossCol is ~1 on dielectrics and metals alike, the Fresnel and a metal's
@@ -876,9 +921,8 @@ __kernel void trace_rays(TraceParams params, __global const float* hzb, __global
         }
 #endif
       }
-      if (SSRCL_COUNT_WORK) count_work(work_counters, gid, &sc);
-      ray_hit[record] = (float4)(hit, edge_confidence(s, size, edge_fade));
-      ray_radiance[record] = (float4)(radiance.xyz, pdf);
+      ray_hit[lane[k].record] = (float4)(hit_point[k], edge_confidence(hit_screen[k], size, edge_fade));
+      ray_radiance[lane[k].record] = (float4)(radiance.xyz, lane[k].pdf);
     }
   }
 }
