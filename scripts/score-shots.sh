@@ -18,6 +18,7 @@ declare -A args=(
   [medium-t5]="--quality medium --temporal 5"
   [draft-t5]="--quality draft --temporal 5"
   [high-t5]="--quality high --temporal 5"
+  [high-t3]="--quality high --temporal 3"
   [medium-t2]="--quality medium --temporal 2"
   [medium-t3]="--quality medium --temporal 3"
   [medium-t8]="--quality medium --temporal 8"
