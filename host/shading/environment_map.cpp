@@ -50,15 +50,31 @@ Vec3 directionAt(double u, double v) {
   return {std::cos(elevation) * std::cos(phi), std::cos(elevation) * std::sin(phi), std::sin(elevation)};
 }
 
-// Bilinear read at image position (u, v) in [0, 1]^2: wraps around in azimuth, clamps at the poles.
-void sampleBilinear(const Image& img, double u, double v, double out[3]) {
-  const double x = u * img.width - 0.5, y = std::clamp(v * img.height - 0.5, 0.0, img.height - 1.0);
-  const double fx = x - std::floor(x), fy = y - std::floor(y);
-  const int x0 = ((int(std::floor(x)) % img.width) + img.width) % img.width, x1 = (x0 + 1) % img.width;
-  const int y0 = int(std::floor(y)), y1 = std::min(y0 + 1, img.height - 1);
+// A bilinear read's row part at image height v in [0, 1] (clamped at the poles), which a lobe
+// sample keeps along an image row.
+struct MipRow {
+  const Image* img;
+  int y0, y1;
+  double fy;
+};
+MipRow mipRow(const Image& img, double v) {
+  const double y = std::clamp(v * img.height - 0.5, 0.0, img.height - 1.0);
+  const int y0 = int(std::floor(y));
+  return {&img, y0, std::min(y0 + 1, img.height - 1), y - std::floor(y)};
+}
+
+// The bilinear read at u in [-1, 2) on that row, wrapping around in azimuth.
+void sampleBilinear(const MipRow& row, double u, double out[3]) {
+  const Image& img = *row.img;
+  const double x = u * img.width - 0.5, fx = x - std::floor(x);
+  int x0 = int(std::floor(x));
+  x0 += x0 < 0 ? img.width : x0 >= img.width ? -img.width : 0;
+  const int x1 = x0 + 1 == img.width ? 0 : x0 + 1;
+  const float* a = img.data.data() + std::size_t(row.y0) * img.width * 3;
+  const float* b = img.data.data() + std::size_t(row.y1) * img.width * 3;
   for (int c = 0; c < 3; ++c)
-    out[c] = (1 - fy) * ((1 - fx) * img.at(x0, y0, c) + fx * img.at(x1, y0, c)) +
-             fy * ((1 - fx) * img.at(x0, y1, c) + fx * img.at(x1, y1, c));
+    out[c] = (1 - row.fy) * ((1 - fx) * a[3 * x0 + c] + fx * a[3 * x1 + c]) +
+             row.fy * ((1 - fx) * b[3 * x0 + c] + fx * b[3 * x1 + c]);
 }
 
 // Half the size (rounded up), each texel the solid-angle-weighted mean of the up to 2x2 texels it
@@ -109,15 +125,18 @@ Image convolveLevel(const std::vector<Image>& mips, int width, double alpha, int
   }
   // Solid angle of a level-0 texel at the equator; it shrinks with cos(latitude) toward the poles.
   const double texelAngle = (2 * kPi / mips[0].width) * (kPi / mips[0].height);
-  // Where a lobe sample of direction l reads: its image position and the mip its solid angle picks.
+  // Where a lobe sample of direction l reads: u, the rows of the two mips its solid angle picks
+  // and their mix.
   struct LobeRead {
-    double u, v, lod, nl;
+    double u, frac, nl;
+    MipRow fine, coarse;
   };
   auto lobeRead = [&](Vec3 l, const LobeSample& s) {
-    const double horizontal = std::hypot(l.x, l.y);
-    const double lod = s.halfLog2Angle - 0.5 * std::log2(texelAngle * std::max(horizontal, 1e-3));
-    return LobeRead{0.5 - std::atan2(l.y, l.x) / (2 * kPi), 0.5 - std::atan2(l.z, horizontal) / kPi,
-                    std::clamp(lod, 0.0, mips.size() - 1.0), s.nl};
+    const double horizontal = std::hypot(l.x, l.y), v = 0.5 - std::atan2(l.z, horizontal) / kPi;
+    const double lod = std::clamp(s.halfLog2Angle - 0.5 * std::log2(texelAngle * std::max(horizontal, 1e-3)), 0.0,
+                                  mips.size() - 1.0);
+    const int m0 = int(lod), m1 = std::min<int>(m0 + 1, int(mips.size()) - 1);
+    return LobeRead{0.5 - std::atan2(l.y, l.x) / (2 * kPi), lod - m0, s.nl, mipRow(mips[m0], v), mipRow(mips[m1], v)};
   };
   // The lobe of the texel at u = 0.5 (azimuth 0) in row v, or where `u` is given, of that texel.
   auto lobeReads = [&](double u, double v, std::vector<LobeRead>& reads) {
@@ -135,8 +154,8 @@ Image convolveLevel(const std::vector<Image>& mips, int width, double alpha, int
     for (int y = first; y < out.height; y += step) {
       const double v = (y + 0.5) / out.height;
       // Off the poles a texel's frame is the row's first frame turned about the polar axis by the
-      // texel's azimuth, and so are its lobe's directions: one set of angles and mips serves the
-      // row, shifted in u (the arc tangents per texel were most of the prefilter's time).
+      // texel's azimuth, and so are its lobe's directions: one set of angles, mips and rows serves
+      // the image row, shifted in u (the arc tangents per texel were most of the prefilter's time).
       const bool turned = std::abs(directionAt(0.5, v).z) < 0.999;
       if (turned) lobeReads(0.5, v, reads);
       for (int x = 0; x < out.width; ++x) {
@@ -145,11 +164,10 @@ Image convolveLevel(const std::vector<Image>& mips, int width, double alpha, int
         const double shift = turned ? u - 0.5 : 0.0;
         double sum[3] = {0, 0, 0}, weight = 0;
         for (const LobeRead& r : reads) {
-          const int m0 = int(r.lod), m1 = std::min<int>(m0 + 1, int(mips.size()) - 1);
           double c0[3], c1[3];
-          sampleBilinear(mips[m0], r.u + shift, r.v, c0);
-          sampleBilinear(mips[m1], r.u + shift, r.v, c1);
-          for (int c = 0; c < 3; ++c) sum[c] += r.nl * (c0[c] + (r.lod - m0) * (c1[c] - c0[c]));
+          sampleBilinear(r.fine, r.u + shift, c0);
+          sampleBilinear(r.coarse, r.u + shift, c1);
+          for (int c = 0; c < 3; ++c) sum[c] += r.nl * (c0[c] + r.frac * (c1[c] - c0[c]));
           weight += r.nl;
         }
         for (int c = 0; c < 3; ++c) out.at(x, y, c) = float(sum[c] / weight);
