@@ -41,6 +41,7 @@ DRAFT="test_glossy_analytic:*DraftStrideTwo*"
 LINEAR_MAPPING="test_glossy_analytic:*LinearRoughnessMapping*"
 THICKNESS="test_differential:*NonDefaultThickness*"
 CREASE="test_glossy_analytic:*Crease*"
+GLOSSY_HITS="test_glossy_hits:*"
 
 # name | fast (1 = in the CI subset) | kernel file | exact pattern | replacement | tests
 MUTANTS=(
@@ -63,6 +64,7 @@ MUTANTS=(
   "strided_pixels_unresolved|0|setup.cl|: strided_out              ? -1|: strided_out              ? 0|$DRAFT"
   "constant_thickness_ignored|0|setup.cl|float thickness_rel = params.adaptive_thickness ? 1.0f : params.thickness_rel;|float thickness_rel = params.adaptive_thickness ? 1.0f : 0.002f;|$THICKNESS"
   "neighbour_normal_check_off|0|resolve.cl|&& dot_lanes(f.nx, f.ny, f.nz, n_q.x, n_q.y, n_q.z) >= 0.9f|/* mutant */|$CREASE"
+  "second_ray_finds_nothing|0|trace.cl|if (t2 < 0.0f) return (float4)(0.0f, 0.0f, 0.0f, -1.0f);|return (float4)(0.0f, 0.0f, 0.0f, -1.0f);|$GLOSSY_HITS"
 )
 
 echo "== building the test executables against mutable kernels in $BUILD"
@@ -73,7 +75,7 @@ targets() {
   local t
   for t in $1; do echo "--target ${t%%:*}"; done | sort -u
 }
-ALL_TESTS="$MIRROR $DIFFERENTIAL $GLOSSY $HZB $EDGE $SAMPLER $HIGH $DRAFT $LINEAR_MAPPING $THICKNESS $CREASE"
+ALL_TESTS="$MIRROR $DIFFERENTIAL $GLOSSY $HZB $EDGE $SAMPLER $HIGH $DRAFT $LINEAR_MAPPING $THICKNESS $CREASE $GLOSSY_HITS"
 # shellcheck disable=SC2046
 cmake --build "$BUILD" -j"$(nproc)" $(targets "$ALL_TESTS") >"$LOG/build.log" || {
   tail -30 "$LOG/build.log"; echo "mutation-check: the unmutated build failed" >&2; exit 2; }
