@@ -76,6 +76,16 @@ inline bool moved_since(float16 main_proj, int2 size, __global const float4* mai
   return -hit.z < 0.98f * nearest;
 }
 
+// One ray of a round in the view: the frame's record of it, and where it stands in the view.
+typedef struct {
+  size_t record;
+  int pixel;
+  float4 h, rad;
+  uchar state;
+  float3 p;  // its origin in the frame
+  float main_distance;
+} ViewRay;
+
 __kernel void trace_views(ViewTraceParams params, __global const ViewCamera* views,
                           __global const float4* main_positions, __global const float4* main_normals,
                           __global const int* ray_list, __global const int* pixel_rays,
@@ -85,84 +95,120 @@ __kernel void trace_views(ViewTraceParams params, __global const ViewCamera* vie
                           __global float4* ray_hit, __global float4* ray_radiance, __global uchar* ray_state) {
   const int2 main_size = (int2)(params.frame.width, params.frame.height);
   const int batch_size = params.batch_size;
-  int gid = get_global_id(0);
-  if (gid >= params.listed * batch_size) return;
-  int i = ray_list[gid / batch_size];
-  int slot = gid % batch_size;
-  if (params.first_sample + slot >= pixel_rays[i]) return;
-  size_t record = (size_t)i * batch_size + slot;
-  float4 h = ray_hit[record];
-  float4 rad = ray_radiance[record];
-  uchar state = ray_state[record];
-  bool hit = h.w >= 0.0f, behind = (state & SSRCL_RAY_BEHIND) != 0, thick = (state & SSRCL_RAY_THICK) != 0;
-  if (hit && h.w >= 1.0f && !behind && !thick) return;  // resolved in full
-  if (!hit && !(dot(h.xyz, h.xyz) > 0.0f)) return;  // no ray (facing away, below the surface)
-
-  float3 v;
-  float3 p = pixel_view_point(vload16(0, params.frame.inv_proj), main_size, (int2)(i % main_size.x, i / main_size.x),
-                              main_positions[i].w, &v);
-  float3 dir = hit ? normalize(h.xyz - p) : h.xyz;
-  float main_distance = hit ? length(h.xyz - p) : INFINITY;
-  if (view_rank(views, params.view_count, params.view, p, dir) != params.rank) return;
-
-  ViewCamera cam = views[params.view];
+  const ViewCamera cam = views[params.view];
   const float16 from_main = vload16(0, cam.from_main), proj = vload16(0, cam.proj);
-  float3 pk = mat_mul(from_main, (float4)(p, 1.0f)).xyz;
-  float3 dk = normalize(mat3_mul(from_main, dir));
-  // A hit the main frame found by crossing a surface is looked for up to just past it: the view
-  // may see it whole, or a surface in front of it that the frame hid.
-  float len = hit && !thick ? 1.02f * main_distance : 1e6f * fmax(length(pk), cam.near_plane);
-  float u0, u1;
-  if (!clip_to_frustum(proj, cam.near_plane, cam.far_plane, pk, dk, len, &u0, &u1)) return;
-
   const int2 size = (int2)(cam.width, cam.height);
-  TraceScene sc = {size, hzb, levels, params.level_count, planes, normals, params.max_iterations, 0, 0, 0, 0, 0};
-  // Where the view shows the ray's origin, the ray is seen from its start: passing behind anything
-  // on its way puts its hit in doubt (a contact point the view does not see either). Where the
-  // origin is hidden (a surface seen from behind) or outside, only after it comes into view.
-  float4 ho = mat_mul(proj, (float4)(pk, 1.0f));
-  if (ho.w > 0.0f && fabs(ho.x) < ho.w && fabs(ho.y) < ho.w) {
-    int2 o = clamp(convert_int2(ndc_to_pixel(ho.xy / ho.w, size)), (int2)(0, 0), size - 1);
-    float shown = positions[o.y * size.x + o.x].w;
-    sc.seen = fabs(shown + pk.z) <= 0.02f * -pk.z;
-  }
-  ScreenRay ray;
-  int2 cell;
-  float t = trace_segment(&sc, proj, params.linear_step, pk + dk * u0, pk + dk * u1, dk, &ray, &cell);
-  if (t < 0.0f) return;
+  // The rays of SSRCL_TRACE_PIXELS listed pixels per work-item, in rounds of the ones that go on
+  // in this view, traced together (trace.cl trace_round) and then taken or left one by one.
+  const int end = min(((int)get_global_id(0) + 1) * SSRCL_TRACE_PIXELS, params.listed) * batch_size;
+  int next = (int)get_global_id(0) * SSRCL_TRACE_PIXELS * batch_size;
+  while (next < end) {
+    ViewRay lane[SSRCL_TRACE_ROUND];
+    TraceScene scene[SSRCL_TRACE_ROUND];
+    ScreenRay lane_ray[SSRCL_TRACE_ROUND];
+    float3 lane_dir[SSRCL_TRACE_ROUND];
+    int lane_live[SSRCL_TRACE_ROUND];
+    float lane_t[SSRCL_TRACE_ROUND];
+    int2 lane_cell[SSRCL_TRACE_ROUND];
+    for (int k = 0; k < SSRCL_TRACE_ROUND; ++k) {
+      const TraceScene sc = {size, hzb, levels, params.level_count, planes, normals, params.max_iterations, 0, 0, 0, 0, 0};
+      scene[k] = sc;
+      lane_ray[k] = no_ray();
+      lane_dir[k] = (float3)(0.0f);
+      lane_live[k] = 0;
+      lane_t[k] = -1.0f;
+    }
+    int count = 0;
+    while (count < SSRCL_TRACE_ROUND && next < end) {
+      const int gid = next++;
+      const int i = ray_list[gid / batch_size];
+      const int slot = gid % batch_size;
+      if (params.first_sample + slot >= pixel_rays[i]) continue;
+      const size_t record = (size_t)i * batch_size + slot;
+      const float4 h = ray_hit[record];
+      const uchar state = ray_state[record];
+      const bool hit = h.w >= 0.0f, thick = (state & SSRCL_RAY_THICK) != 0;
+      if (hit && h.w >= 1.0f && !(state & SSRCL_RAY_BEHIND) && !thick) continue;  // resolved in full
+      if (!hit && !(dot(h.xyz, h.xyz) > 0.0f)) continue;  // no ray (facing away, below the surface)
 
-  cell = clamp(cell, (int2)(0, 0), size - 1);
-  float3 hit_k = ray_point(&ray, t);
-  float3 hit_main = mat_mul(vload16(0, cam.to_main), (float4)(hit_k, 1.0f)).xyz;
-  // The texel hit: its surface point, not the ray's (which may pass within its thickness).
-  if (cam.other_time) {
-    float3 texel = mat_mul(vload16(0, cam.to_main), (float4)(positions[cell.y * size.x + cell.x].xyz, 1.0f)).xyz;
-    if (moved_since(vload16(0, params.frame.proj), main_size, main_positions, texel)) return;
-  }
-  float distance = length(hit_main - p);
-  float confidence = edge_confidence(ray_screen(&ray, t), size, params.edge_fade);
-  // Taken when the view sees more of the hit than the frame did; or, where the frame's hit is in
-  // doubt, when the view sees the ray's whole way to its hit (it did not pass behind anything: a
-  // contact point hidden from the view too stays the frame's), nearer than a frame hit found
-  // behind a surface, or anywhere for one found only within a thickness.
-  bool clear = !sc.behind && confidence > 0.0f;
-  bool nearer = behind && clear && distance < 0.98f * main_distance;
-  bool crossing = thick && clear;
-  if (!(confidence > fmax(h.w, 0.0f) || nearer || crossing)) return;
+      float3 v;
+      const float3 p = pixel_view_point(vload16(0, params.frame.inv_proj), main_size,
+                                        (int2)(i % main_size.x, i / main_size.x), main_positions[i].w, &v);
+      const float3 dir = hit ? normalize(h.xyz - p) : h.xyz;
+      const float main_distance = hit ? length(h.xyz - p) : INFINITY;
+      if (view_rank(views, params.view_count, params.view, p, dir) != params.rank) continue;
 
-  // The frame's own hit, confirmed: it keeps the frame's colour (its own render, at its own
-  // resolution) and the confidence the view adds.
-  if (hit && fabs(distance - main_distance) <= 0.02f * main_distance) {
-    ray_hit[record] = (float4)(h.xyz, fmax(h.w, confidence));
-    ray_state[record] = (uchar)(state & ~(SSRCL_RAY_BEHIND | SSRCL_RAY_THICK));
-    return;
+      const float3 pk = mat_mul(from_main, (float4)(p, 1.0f)).xyz;
+      const float3 dk = normalize(mat3_mul(from_main, dir));
+      // A hit the main frame found by crossing a surface is looked for up to just past it: the view
+      // may see it whole, or a surface in front of it that the frame hid.
+      const float len = hit && !thick ? 1.02f * main_distance : 1e6f * fmax(length(pk), cam.near_plane);
+      float u0, u1;
+      if (!clip_to_frustum(proj, cam.near_plane, cam.far_plane, pk, dk, len, &u0, &u1)) continue;
+
+      const int k = count++;
+      const ViewRay made = {record, i, h, ray_radiance[record], state, p, main_distance};
+      lane[k] = made;
+      // Where the view shows the ray's origin, the ray is seen from its start: passing behind
+      // anything on its way puts its hit in doubt (a contact point the view does not see either).
+      // Where the origin is hidden (a surface seen from behind) or outside, only after it comes
+      // into view.
+      const float4 ho = mat_mul(proj, (float4)(pk, 1.0f));
+      if (ho.w > 0.0f && fabs(ho.x) < ho.w && fabs(ho.y) < ho.w) {
+        const int2 o = clamp(convert_int2(ndc_to_pixel(ho.xy / ho.w, size)), (int2)(0, 0), size - 1);
+        const float shown = positions[o.y * size.x + o.x].w;
+        scene[k].seen = fabs(shown + pk.z) <= 0.02f * -pk.z;
+      }
+      lane_dir[k] = dk;
+      lane_live[k] = segment_ray(proj, size, pk + dk * u0, pk + dk * u1, &lane_ray[k]);
+    }
+    trace_round(scene, params.linear_step, lane_ray, lane_dir, lane_live, lane_t, lane_cell);
+
+    for (int k = 0; k < count; ++k) {
+      const float t = lane_t[k];
+      if (t < 0.0f) continue;
+      const ViewRay r = lane[k];
+      const ScreenRay ray = lane_ray[k];
+      const int2 cell = clamp(lane_cell[k], (int2)(0, 0), size - 1);
+      const float3 hit_k = ray_point(&ray, t);
+      const float3 hit_main = mat_mul(vload16(0, cam.to_main), (float4)(hit_k, 1.0f)).xyz;
+      // The texel hit: its surface point, not the ray's (which may pass within its thickness).
+      if (cam.other_time) {
+        const float3 texel =
+            mat_mul(vload16(0, cam.to_main), (float4)(positions[cell.y * size.x + cell.x].xyz, 1.0f)).xyz;
+        if (moved_since(vload16(0, params.frame.proj), main_size, main_positions, texel)) continue;
+      }
+      const bool hit = r.h.w >= 0.0f, behind = (r.state & SSRCL_RAY_BEHIND) != 0,
+                 thick = (r.state & SSRCL_RAY_THICK) != 0;
+      const float distance = length(hit_main - r.p);
+      const float confidence = edge_confidence(ray_screen(&ray, t), size, params.edge_fade);
+      // Taken when the view sees more of the hit than the frame did; or, where the frame's hit is in
+      // doubt, when the view sees the ray's whole way to its hit (it did not pass behind anything: a
+      // contact point hidden from the view too stays the frame's), nearer than a frame hit found
+      // behind a surface, or anywhere for one found only within a thickness.
+      const bool clear = !scene[k].behind && confidence > 0.0f;
+      const bool nearer = behind && clear && distance < 0.98f * r.main_distance;
+      const bool crossing = thick && clear;
+      if (!(confidence > fmax(r.h.w, 0.0f) || nearer || crossing)) continue;
+
+      // The frame's own hit, confirmed: it keeps the frame's colour (its own render, at its own
+      // resolution) and the confidence the view adds.
+      if (hit && fabs(distance - r.main_distance) <= 0.02f * r.main_distance) {
+        ray_hit[r.record] = (float4)(r.h.xyz, fmax(r.h.w, confidence));
+        ray_state[r.record] = (uchar)(r.state & ~(SSRCL_RAY_BEHIND | SSRCL_RAY_THICK));
+        continue;
+      }
+      const float nr_w = main_normals[r.pixel].w;
+      const float alpha = nr_w <= params.frame.mirror_roughness
+                              ? 0.0f
+                              : fmax(roughness_to_alpha(nr_w, SSRCL_ROUGHNESS_MAPPING), 1e-4f);
+      float3 color = sanitize_radiance3(
+          hit_color(&scene[k], color_pyramid, proj, &ray, t, cell, distance, alpha, params.cone_scale).xyz);
+      const float mean = (color.x + color.y + color.z) / 3.0f;
+      if (mean > params.radiance_limit) color *= params.radiance_limit / mean;
+      ray_hit[r.record] = (float4)(hit_main, confidence);
+      ray_radiance[r.record] = (float4)(color, r.rad.w);
+      ray_state[r.record] = (uchar)((1 + params.view) << SSRCL_RAY_SOURCE_SHIFT);
+    }
   }
-  float nr_w = main_normals[i].w;
-  float alpha = nr_w <= params.frame.mirror_roughness ? 0.0f : fmax(roughness_to_alpha(nr_w, SSRCL_ROUGHNESS_MAPPING), 1e-4f);
-  float3 color = sanitize_radiance3(hit_color(&sc, color_pyramid, proj, &ray, t, cell, distance, alpha, params.cone_scale).xyz);
-  float mean = (color.x + color.y + color.z) / 3.0f;
-  if (mean > params.radiance_limit) color *= params.radiance_limit / mean;
-  ray_hit[record] = (float4)(hit_main, confidence);
-  ray_radiance[record] = (float4)(color, rad.w);
-  ray_state[record] = (uchar)((1 + params.view) << SSRCL_RAY_SOURCE_SHIFT);
 }

@@ -158,7 +158,8 @@ void ViewStage::trace(cl::CommandQueue& q, const TraceParams& batch, StageEvents
   p.linear_step = batch.linear_step;
   p.edge_fade = batch.edge_fade;
   p.radiance_limit = radianceLimit_;
-  const size_t range = roundUp(size_t(batch.listed) * batch.batch_size, 64);
+  // A work-item per SSRCL_TRACE_PIXELS listed pixels (kernels/view_trace.cl).
+  const size_t range = roundUp((size_t(batch.listed) + SSRCL_TRACE_PIXELS - 1) / SSRCL_TRACE_PIXELS, 64);
   const int ranks = std::min<int>(SSRCL_VIEWS_PER_RAY, static_cast<int>(units_.size()));
   for (p.rank = 0; p.rank < ranks; ++p.rank) {
     for (size_t k = 0; k < units_.size(); ++k) {
