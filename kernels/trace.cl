@@ -25,6 +25,9 @@
 #define SSRCL_TRACE_PACKETS 2  // packets of eight rays a round (trace_hiz_packets)
 #endif
 #define SSRCL_TRACE_ROUND (8 * SSRCL_TRACE_PACKETS)
+#ifndef SSRCL_TRACE_SCALAR
+#define SSRCL_TRACE_SCALAR 0  // 1: Hi-Z a ray at a time (trace_hiz), the form the packets' lanes reproduce (tests)
+#endif
 #ifndef SSRCL_MATERIAL_HITS
 #define SSRCL_MATERIAL_HITS 0  // 1: hits on glossy pixels are shaded with their F0 (f0, albedo)
 #endif
@@ -530,10 +533,6 @@ inline float trace_ray(TraceScene* sc, float linear_step, const ScreenRay* ray, 
 }
 
 // Traces the view-space segment p0 -> p1 (both in front of the camera) with direction dir.
-inline float trace_segment(TraceScene* sc, float16 proj, float linear_step, float3 p0, float3 p1, float3 dir,
-                           ScreenRay* ray, int2* cell) {
-  return segment_ray(proj, sc->size, p0, p1, ray) ? trace_ray(sc, linear_step, ray, dir, cell) : -1.0f;
-}
 
 // The screen ray from view-space point p along unit direction dir: the segment ends at the near
 // plane for rays toward the camera, at the far plane otherwise, capped so an infinite far plane
@@ -581,13 +580,6 @@ inline int8 ray_from_lanes(float16 proj, int2 size, float near_plane, float far_
          isfinite(r->dsy) & (fmax(fabs(r->dsx), fabs(r->dsy)) > 0.0f);
 }
 
-// Traces from view-space point p along unit direction dir (ray_from). Returns the hit's t on
-// *ray (negative on a miss) and the pixel hit in *cell.
-inline float trace_from(TraceScene* sc, float16 proj, float near_plane, float far_plane, float linear_step, float3 p,
-                        float3 dir, ScreenRay* ray, int2* cell) {
-  return ray_from(proj, sc->size, near_plane, far_plane, p, dir, ray) ? trace_ray(sc, linear_step, ray, dir, cell)
-                                                                      : -1.0f;
-}
 
 // The direction a surface with normal n and GGX alpha reflects toward o (unit, away from it): the
 // exact mirror direction (pdf 0: a delta), or a visible-normal sample of its lobe drawn with u and
@@ -665,7 +657,7 @@ inline float4 bounce_found(__global const float4* color_pyramid, int2 size, floa
 // reference tracers a ray at a time.
 inline void trace_round(TraceScene* sc, float linear_step, const ScreenRay* rays, const float3* dirs, const int* live,
                         float* t_hit, int2* hit_cell) {
-#if SSRCL_TRACER == SSRCL_TRACER_HIZ
+#if SSRCL_TRACER == SSRCL_TRACER_HIZ && !SSRCL_TRACE_SCALAR
   trace_hiz_packets(sc, rays, dirs, live, t_hit, hit_cell);
 #else
   for (int k = 0; k < SSRCL_TRACE_ROUND; ++k)

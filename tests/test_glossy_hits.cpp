@@ -13,12 +13,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <glm/glm.hpp>
 #include <iostream>
 
 #include "ssrcl/ssrcl.hpp"
 #include "support/cycles_reference.hpp"
 #include "support/exr_fixtures.hpp"
+#include "support/scoped_env.hpp"
 #include "support/test_device.hpp"
 
 namespace {
@@ -125,6 +127,34 @@ TEST(GlossyHits, DielectricPropsReflectedInALacqueredFloorMatchCycles) {
   EXPECT_LE(maxAfter, maxBefore);
   for (const ssrcl::Image* pass : {&before, &after})
     for (float v : pass->data) ASSERT_TRUE(std::isfinite(v));
+}
+
+// The packets (kernels/trace.cl trace_hiz_packets) find what trace_hiz finds a ray at a time, to
+// the bit: this frame's glossy rays, and the second rays of their hits on the glossy props, traced
+// both ways.
+TEST(GlossyHits, PacketsTraceAsTheScalarHiZ) {
+  const ssrcl::test::CyclesReference ref = ssrcl::test::loadCyclesReference(kScene);
+  const ssrcl::GBuffer g = ssrcl::test::withMaterialAovs(ref.gbuffer, kScene);
+  auto run = [&](const char* options) {
+    const ssrcl::test::ScopedEnv env("SSRCL_KERNEL_BUILD_OPTIONS", options);
+    ssrcl::Device device = ssrcl::test::testDevice();
+    ssrcl::Pipeline pipeline(device);
+    pipeline.setGBuffer(g);
+    pipeline.setCamera(ref.camera);
+    pipeline.settings() = ssrcl::qualityPreset("medium");
+    pipeline.commit();
+    pipeline.execute();
+    return pipeline.output("reflection");
+  };
+  const ssrcl::Image packets = run("-DSSRCL_TRACE_SCALAR=0"), scalar = run("-DSSRCL_TRACE_SCALAR=1");
+  ASSERT_EQ(packets.data.size(), scalar.data.size());
+  size_t differ = 0, lit = 0;
+  for (size_t i = 0; i < packets.data.size(); ++i) {
+    differ += std::memcmp(&packets.data[i], &scalar.data[i], sizeof(float)) != 0;
+    lit += packets.data[i] > 0.0f;
+  }
+  EXPECT_EQ(differ, 0u);
+  EXPECT_GT(lit, packets.data.size() / 4);  // the floor reflects
 }
 
 // Hit shading does not depend on the output form: `ssrcl trace --output-form incident` (loadFrame)

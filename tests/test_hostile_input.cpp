@@ -32,6 +32,7 @@
 #include "pipeline/device_impl.hpp"
 #include "scenes/analytic_scene.hpp"
 #include "ssrcl/ssrcl.hpp"
+#include "support/scoped_env.hpp"
 #include "support/exr_fixtures.hpp"
 #include "support/run_command.hpp"
 #include "support/temp_dir.hpp"
@@ -388,16 +389,9 @@ TEST_F(Hostile, KernelBuildFailureShowsTheBuildLog) {
                 "SSRCL_KERNEL_BUILD_OPTIONS='-Dsanitize_radiance=)' ");
 }
 
-// setenv for the lifetime of a scope.
-struct ScopedEnv {
-  std::string name;
-  ScopedEnv(const char* n, const char* value) : name(n) { setenv(n, value, 1); }
-  ~ScopedEnv() { unsetenv(name.c_str()); }
-};
-
 TEST(DeviceErrors, KernelBuildFailureIsTypedAndCarriesTheLog) {
   // A function of common.cl, which every program includes, turned into a stray ')': none builds.
-  const ScopedEnv env("SSRCL_KERNEL_BUILD_OPTIONS", "-Dsanitize_radiance=)");
+  const ssrcl::test::ScopedEnv env("SSRCL_KERNEL_BUILD_OPTIONS", "-Dsanitize_radiance=)");
   Device device = testDevice();  // a new device builds its own program
   const Shot shot = makeShot();
   Image color(kW, kH, 3), depth(kW, kH, 1), normal(kW, kH, 3);

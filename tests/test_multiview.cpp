@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <iostream>
 
@@ -14,6 +15,7 @@
 #include "support/analytic_sequence.hpp"
 #include "support/exr_fixtures.hpp"
 #include "support/run_command.hpp"
+#include "support/scoped_env.hpp"
 #include "support/temp_dir.hpp"
 #include "support/test_device.hpp"
 
@@ -145,6 +147,31 @@ TEST(Multiview, OffScreenReflectionsComeFromAWideView) {
   // A = 0 where the frame cannot see the hit: measured 2 of 1,586 pixels with A > 0, at silhouettes
   // where the frame's neighbouring surface is taken.
   EXPECT_LE(without.fraction(without.found), 0.005);
+}
+
+// The views' rays in packets (kernels/view_trace.cl, trace.cl trace_round) find what trace_hiz
+// finds a ray at a time, to the bit.
+TEST(Multiview, PacketsTraceAsTheScalarHiZ) {
+  const Scene scene = makeScene("spheres_on_mirror");
+  ViewParams frameParams = scene.view, wideParams = scene.view;
+  frameParams.fovYDegrees = 30.0;
+  wideParams.fovYDegrees = 75.0;
+  const View frame = renderView(scene, frameParams, 160, 90), wide = renderView(scene, wideParams, 160, 90);
+  auto run = [&](const char* options) {
+    const ssrcl::test::ScopedEnv env("SSRCL_KERNEL_BUILD_OPTIONS", options);
+    return trace(frame.g, frame.camera, {&wide});
+  };
+  const Pass packets = run("-DSSRCL_TRACE_SCALAR=0"), scalar = run("-DSSRCL_TRACE_SCALAR=1");
+  ASSERT_EQ(packets.reflection.data.size(), scalar.reflection.data.size());
+  size_t differ = 0, fromView = 0;
+  for (size_t i = 0; i < packets.reflection.data.size(); ++i)
+    differ += std::memcmp(&packets.reflection.data[i], &scalar.reflection.data[i], sizeof(float)) != 0;
+  for (size_t i = 0; i < packets.view.data.size(); ++i) {
+    differ += std::memcmp(&packets.view.data[i], &scalar.view.data[i], sizeof(float)) != 0;
+    fromView += packets.view.data[i] > 0.0f;
+  }
+  EXPECT_EQ(differ, 0u);
+  EXPECT_GT(fromView, 100u);  // the view's rays are taken
 }
 
 // The same through `ssrcl batch --view`: two frames of the narrow lens (the second orbited by 2
