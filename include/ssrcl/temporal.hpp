@@ -69,7 +69,7 @@ struct TemporalSettings {
 void validateTemporalSettings(const TemporalSettings& settings);
 
 // A frame's statistics for temporalBlend (TemporalFrame::statistics). Throws
-// Error(InvalidArgument) where its reflection or depth is missing or of another size than its camera.
+// Error(InvalidArgument) where its reflection, depth or normal is missing or of another size than its camera.
 std::shared_ptr<const TemporalFrameStatistics> temporalFrameStatistics(const TemporalFrame& frame);
 
 // The reflection of frames[centre] blended with the other frames: per pixel the weighted mean of
