@@ -29,9 +29,10 @@
 
 namespace ssrcl {
 
-// What the blend derives from a frame alone (its pixels' neighbourhood radiance statistics, its
-// camera's inverses): computed once per frame by temporalFrameStatistics and shared by every
-// window that holds the frame, instead of once per window (2K + 1 times for `--temporal K`).
+// What the blend derives from a frame alone (its pixels' neighbourhood radiance statistics, their
+// world points and normals, its camera's inverse; 96 bytes a pixel): computed once per frame by
+// temporalFrameStatistics and shared by every window that holds the frame, instead of once per
+// window (2K + 1 times for `--temporal K`).
 struct TemporalFrameStatistics;
 
 // One traced frame of the window: its pipeline outputs and G-buffer (same size), not owned.
