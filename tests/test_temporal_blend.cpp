@@ -197,11 +197,19 @@ TEST(TemporalBlend, SharedFrameStatisticsBlendTheSame) {
   AnalyticFrame half = makeFrame(0, 0.2);
   half.reflection = ssrcl::Image(kW / 2, kH, 4);
   half.depth = ssrcl::Image(kW / 2, kH, 1);
+  half.normal = ssrcl::Image(kW / 2, kH, 3);
   half.camera.width = kW / 2;
   shared[1].statistics = ssrcl::temporalFrameStatistics(window({half})[0]);
   EXPECT_THROW(ssrcl::temporalBlend(shared, 0, {}), ssrcl::Error);
   half.camera.width = kW;  // images not of the camera's size
   EXPECT_THROW(ssrcl::temporalFrameStatistics(window({half})[0]), ssrcl::Error);
+  // The statistics hold each pixel's world point and normal: a frame without its normals has none.
+  AnalyticFrame bare = makeFrame(0, 0.2);
+  std::vector<ssrcl::TemporalFrame> noNormals = window({bare});
+  noNormals[0].normal = nullptr;
+  EXPECT_THROW(ssrcl::temporalFrameStatistics(noNormals[0]), ssrcl::Error);
+  bare.normal = ssrcl::Image(kW, kH / 2, 3);
+  EXPECT_THROW(ssrcl::temporalFrameStatistics(window({bare})[0]), ssrcl::Error);
 }
 
 }  // namespace

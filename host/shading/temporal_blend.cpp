@@ -15,25 +15,18 @@ namespace {
 // Where a miss's reflected point is taken: far enough to be a direction for any camera move.
 constexpr double kMissDistance = 1e6;
 
-// A frame's pixel geometry in world space, from its depth and camera (the camera's inverses from
-// its statistics).
+// A frame's pixel geometry in world space (its surface pixels' points and normals from its
+// statistics, computed there once per frame).
 struct FrameGeometry {
   const TemporalFrame* frame;
-  const glm::dmat4 &inverseProjection, &inverseView;
+  const TemporalFrameStatistics& statistics;
   glm::dvec3 eye;
 
   FrameGeometry(const TemporalFrame& f, const TemporalFrameStatistics& statistics);
 
-  glm::dvec3 point(int x, int y) const {
-    const glm::dvec3 c = cameraPointAt(inverseProjection, frame->camera, x + 0.5, y + 0.5, frame->depth->at(x, y, 0));
-    return glm::dvec3(inverseView * glm::dvec4(c, 1.0));
-  }
-  glm::dvec3 normal(int x, int y) const {
-    const Image& n = *frame->normal;
-    const glm::dvec3 v(n.at(x, y, 0), n.at(x, y, 1), n.at(x, y, 2));
-    const double len = glm::length(v);
-    return len > 0.0 ? v / len : glm::dvec3(0.0);
-  }
+  // Of surface pixels only.
+  const glm::dvec3& point(int x, int y) const;
+  const glm::dvec3& normal(int x, int y) const;
   // Screen position (pixels) and planar depth of a world point.
   glm::dvec3 screen(const glm::dvec3& world) const {
     return cameraToScreen(frame->camera, glm::dvec3(frame->camera.view * glm::dvec4(world, 1.0)));
@@ -54,19 +47,28 @@ void forRows(int h, const RowFn& rows) {
 }
 
 // Mean and variance of each colour channel of a frame's pass over the surface pixels of each
-// pixel's neighbourhood (separable sums: a row pass, then a column pass).
+// pixel's neighbourhood (separable sums: a row pass, then a column pass). The variance is kept as
+// sqrt(2 variance): the test's sqrt(2 min(a, b)) is min(sqrt(2a), sqrt(2b)) to the bit (sqrt is
+// monotonic and correctly rounded), and so costs no square root a tap.
 struct RadianceStats {
   int width = 0;
-  std::vector<double> mean, variance;  // 3 a pixel
+  std::vector<double> mean, spread;  // 3 a pixel
 
   explicit RadianceStats(const TemporalFrame& f) : width(f.reflection->width) {
     const int w = width, h = f.reflection->height;
     constexpr int kSums = 7;  // count, 3 sums, 3 sums of squares
-    std::vector<double> rows(size_t(w) * h * kSums);
+    constexpr int kRows = 2 * kRadianceRadius + 1;
+    mean.assign(size_t(w) * h * 3, 0.0);
+    spread.assign(size_t(w) * h * 3, 0.0);
     forRows(h, [&](int y0, int y1) {
-      for (int y = y0; y < y1; ++y)
+      // The row sums of the rows a pixel's column sums take, in a ring (row r in slot r % kRows):
+      // the frame's row sums at once would be 56 bytes a pixel of memory touched once.
+      std::vector<double> ring(size_t(kRows) * w * kSums);
+      const auto sumRow = [&](int y) {
+        double* row = &ring[size_t(y % kRows) * w * kSums];
         for (int x = 0; x < w; ++x) {
-          double* r = &rows[(size_t(y) * w + x) * kSums];
+          double* r = &row[size_t(x) * kSums];
+          std::fill(r, r + kSums, 0.0);
           for (int sx = std::max(0, x - kRadianceRadius); sx <= std::min(w - 1, x + kRadianceRadius); ++sx) {
             if (!detail::isSurfaceDepth(f.depth->at(sx, y, 0))) continue;
             r[0] += 1.0;
@@ -77,22 +79,22 @@ struct RadianceStats {
             }
           }
         }
-    });
-    mean.assign(size_t(w) * h * 3, 0.0);
-    variance.assign(size_t(w) * h * 3, 0.0);
-    forRows(h, [&](int y0, int y1) {
-      for (int y = y0; y < y1; ++y)
+      };
+      int summed = std::max(0, y0 - kRadianceRadius);  // the next row to sum
+      for (int y = y0; y < y1; ++y) {
+        for (; summed <= std::min(h - 1, y + kRadianceRadius); ++summed) sumRow(summed);
         for (int x = 0; x < w; ++x) {
           double sum[kSums] = {};
           for (int sy = std::max(0, y - kRadianceRadius); sy <= std::min(h - 1, y + kRadianceRadius); ++sy)
-            for (int k = 0; k < kSums; ++k) sum[k] += rows[(size_t(sy) * w + x) * kSums + k];
+            for (int k = 0; k < kSums; ++k) sum[k] += ring[(size_t(sy % kRows) * w + x) * kSums + k];
           if (sum[0] <= 0.0) continue;
           for (int c = 0; c < 3; ++c) {
             const double m = sum[1 + c] / sum[0];
             mean[(size_t(y) * w + x) * 3 + c] = m;
-            variance[(size_t(y) * w + x) * 3 + c] = std::max(0.0, sum[4 + c] / sum[0] - m * m);
+            spread[(size_t(y) * w + x) * 3 + c] = std::sqrt(2.0 * std::max(0.0, sum[4 + c] / sum[0] - m * m));
           }
         }
+      }
     });
   }
 
@@ -102,13 +104,19 @@ struct RadianceStats {
     const size_t i = (size_t(y) * width + x) * 3, j = (size_t(oy) * o.width + ox) * 3;
     for (int c = 0; c < 3; ++c) {
       const double a = mean[i + c], b = o.mean[j + c];
-      const double tolerance = s.radianceSigmas * std::sqrt(2.0 * std::min(variance[i + c], o.variance[j + c])) +
+      const double tolerance = s.radianceSigmas * std::min(spread[i + c], o.spread[j + c]) +
                                s.radianceShare * std::max(std::abs(a), std::abs(b));
       if (!(std::abs(a - b) <= tolerance)) return false;
     }
     return true;
   }
 };
+
+// Asks for the cache line of an image's pixel around (x, y) (pixel coordinates), if in the image.
+void prefetchPixel(const Image& image, double x, double y) {
+  if (!(x >= 0.0 && y >= 0.0 && x < image.width && y < image.height)) return;
+  __builtin_prefetch(&image.data[(size_t(y) * image.width + size_t(x)) * image.channels]);
+}
 
 void requireImage(const Image* image, int width, int height, int channels, const std::string& what) {
   if (!image || image->width != width || image->height != height || image->channels != channels)
@@ -119,19 +127,49 @@ void requireImage(const Image* image, int width, int height, int channels, const
 
 }  // namespace
 
+// Each surface pixel's world point (from its depth and camera) and unit normal: a blend takes
+// each about four times from every window that holds the frame, so they are computed once here
+// (the same arithmetic, so the same values as computing them at each tap).
+struct SurfaceGeometry {
+  std::vector<glm::dvec3> points, normals;  // a pixel; zero where no surface
+
+  SurfaceGeometry(const TemporalFrame& f, const glm::dmat4& inverseProjection, const glm::dmat4& inverseView)
+      : points(size_t(f.camera.width) * f.camera.height), normals(points.size()) {
+    const int w = f.camera.width;
+    forRows(f.camera.height, [&](int y0, int y1) {
+      for (int y = y0; y < y1; ++y)
+        for (int x = 0; x < w; ++x) {
+          const float depth = f.depth->at(x, y, 0);
+          if (!detail::isSurfaceDepth(depth)) continue;
+          const glm::dvec3 c = cameraPointAt(inverseProjection, f.camera, x + 0.5, y + 0.5, depth);
+          points[size_t(y) * w + x] = glm::dvec3(inverseView * glm::dvec4(c, 1.0));
+          const glm::dvec3 v(f.normal->at(x, y, 0), f.normal->at(x, y, 1), f.normal->at(x, y, 2));
+          const double len = glm::length(v);
+          normals[size_t(y) * w + x] = len > 0.0 ? v / len : glm::dvec3(0.0);
+        }
+    });
+  }
+};
+
 struct TemporalFrameStatistics {
   int width = 0, height = 0;
-  glm::dmat4 inverseProjection, inverseView;
+  glm::dmat4 inverseView;
   RadianceStats radiance;
+  SurfaceGeometry surface;
 };
 
 namespace {
 
-FrameGeometry::FrameGeometry(const TemporalFrame& f, const TemporalFrameStatistics& statistics)
-    : frame(&f),
-      inverseProjection(statistics.inverseProjection),
-      inverseView(statistics.inverseView),
-      eye(glm::dvec3(inverseView[3])) {}
+FrameGeometry::FrameGeometry(const TemporalFrame& f, const TemporalFrameStatistics& s)
+    : frame(&f), statistics(s), eye(glm::dvec3(s.inverseView[3])) {}
+
+const glm::dvec3& FrameGeometry::point(int x, int y) const {
+  return statistics.surface.points[size_t(y) * statistics.width + x];
+}
+
+const glm::dvec3& FrameGeometry::normal(int x, int y) const {
+  return statistics.surface.normals[size_t(y) * statistics.width + x];
+}
 
 }  // namespace
 
@@ -140,8 +178,12 @@ std::shared_ptr<const TemporalFrameStatistics> temporalFrameStatistics(const Tem
   const int w = frame.camera.width, h = frame.camera.height;
   requireImage(frame.reflection, w, h, 4, "reflection (of its camera's size)");
   requireImage(frame.depth, w, h, 1, "depth (of its camera's size)");
-  return std::make_shared<const TemporalFrameStatistics>(TemporalFrameStatistics{
-      w, h, glm::inverse(frame.camera.projection), glm::inverse(frame.camera.view), RadianceStats(frame)});
+  requireImage(frame.normal, w, h, 3, "normal (of its camera's size)");
+  const glm::dmat4 inverseProjection = glm::inverse(frame.camera.projection);
+  const glm::dmat4 inverseView = glm::inverse(frame.camera.view);
+  return std::make_shared<const TemporalFrameStatistics>(
+      TemporalFrameStatistics{w, h, inverseView, RadianceStats(frame),
+                              SurfaceGeometry(frame, inverseProjection, inverseView)});
 }
 
 void validateTemporalSettings(const TemporalSettings& s) {
@@ -189,13 +231,18 @@ Image temporalBlend(const std::vector<TemporalFrame>& frames, size_t centre, con
   const double cosNormal = std::cos(glm::radians(double(s.maxNormalDegrees)));
 
   Image out = *own.reflection;
+  // Where a pixel's reflected point and hit fall in each neighbour.
+  struct Projection {
+    glm::dvec3 reflected, hit;
+  };
   const auto blendRows = [&](int rowBegin, int rowEnd) {
+    std::vector<Projection> projected(frames.size());
     for (int y = rowBegin; y < rowEnd; ++y)
       for (int x = 0; x < w; ++x) {
         const float depth = own.depth->at(x, y, 0);
         const float roughness = own.roughness ? own.roughness->at(x, y, 0) : *s.constantRoughness;
         if (!detail::isSurfaceDepth(depth) || roughness <= s.mirrorRoughness) continue;
-        const glm::dvec3 p = g.point(x, y), n = g.normal(x, y);
+        const glm::dvec3 &p = g.point(x, y), &n = g.normal(x, y);
         const glm::dvec3 view = glm::normalize(p - g.eye);
         const double dist = own.distance->at(x, y, 0);
         const bool miss = !(dist > 0.0);
@@ -204,14 +251,28 @@ Image temporalBlend(const std::vector<TemporalFrame>& frames, size_t centre, con
         // The hit itself, along the mirror direction of the pixel's normal (the lobe's centre).
         const glm::dvec3 hit = p + glm::reflect(view, n) * dist;
         const double spread = double(s.roughnessSpread) * roughness;  // of the hit distance
+        // Every neighbour's projections first, and the pixels they fall on asked for: a
+        // neighbour's pixels are far apart in memory from the last one's, and asked for together
+        // they arrive together, not one at a time behind each neighbour's taps.
+        for (size_t j = 0; j < frames.size(); ++j) {
+          if (j == centre) continue;
+          Projection& at = projected[j];
+          at.reflected = geometry[j].screen(reflected);
+          if (!miss) {
+            at.hit = geometry[j].screen(hit);
+            prefetchPixel(*frames[j].depth, at.hit.x, at.hit.y);
+          }
+          prefetchPixel(*frames[j].depth, at.reflected.x - 0.5, at.reflected.y - 0.5);
+          prefetchPixel(*frames[j].depth, at.reflected.x - 0.5, at.reflected.y + 0.5);
+        }
         double sum[4] = {0, 0, 0, 0}, weight = 0;
         for (size_t j = 0; j < frames.size(); ++j) {
           if (j == centre) continue;
           const FrameGeometry& o = geometry[j];
-          const glm::dvec3 q = o.screen(reflected);
+          const glm::dvec3& q = projected[j].reflected;
           if (!(q.z > 0.0) || !std::isfinite(q.x) || !std::isfinite(q.y)) continue;
           if (!miss) {  // the hit seen from the neighbour in front of what it shows there: moved
-            const glm::dvec3 hs = o.screen(hit);
+            const glm::dvec3& hs = projected[j].hit;
             const int hx = int(std::floor(hs.x)), hy = int(std::floor(hs.y));
             if (hs.z > 0.0 && hx >= 0 && hy >= 0 && hx < w && hy < h) {
               const float shown = frames[j].depth->at(hx, hy, 0);
@@ -227,7 +288,7 @@ Image temporalBlend(const std::vector<TemporalFrame>& frames, size_t centre, con
             if (sx < 0 || sy < 0 || sx >= w || sy >= h) continue;
             const double bilinear = ((k & 1) ? tx : 1 - tx) * ((k >> 1) ? ty : 1 - ty);
             if (bilinear <= 0.0 || !detail::isSurfaceDepth(frames[j].depth->at(sx, sy, 0))) continue;
-            const glm::dvec3 ps = o.point(sx, sy), ns = o.normal(sx, sy);
+            const glm::dvec3 &ps = o.point(sx, sy), &ns = o.normal(sx, sy);
             if (glm::dot(n, ns) < cosNormal) continue;
             if (std::abs(glm::dot(ps - p, glm::normalize(n + ns))) > s.planeTolerance * depth) continue;
             const double ds = frames[j].distance->at(sx, sy, 0);

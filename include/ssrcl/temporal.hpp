@@ -29,9 +29,10 @@
 
 namespace ssrcl {
 
-// What the blend derives from a frame alone (its pixels' neighbourhood radiance statistics, its
-// camera's inverses): computed once per frame by temporalFrameStatistics and shared by every
-// window that holds the frame, instead of once per window (2K + 1 times for `--temporal K`).
+// What the blend derives from a frame alone (its pixels' neighbourhood radiance statistics, their
+// world points and normals, its camera's inverse; 96 bytes a pixel): computed once per frame by
+// temporalFrameStatistics and shared by every window that holds the frame, instead of once per
+// window (2K + 1 times for `--temporal K`).
 struct TemporalFrameStatistics;
 
 // One traced frame of the window: its pipeline outputs and G-buffer (same size), not owned.
@@ -69,7 +70,7 @@ struct TemporalSettings {
 void validateTemporalSettings(const TemporalSettings& settings);
 
 // A frame's statistics for temporalBlend (TemporalFrame::statistics). Throws
-// Error(InvalidArgument) where its reflection or depth is missing or of another size than its camera.
+// Error(InvalidArgument) where its reflection, depth or normal is missing or of another size than its camera.
 std::shared_ptr<const TemporalFrameStatistics> temporalFrameStatistics(const TemporalFrame& frame);
 
 // The reflection of frames[centre] blended with the other frames: per pixel the weighted mean of
