@@ -4,7 +4,8 @@
 // must find each neighbour where it reflects the same ceiling point (the reflected point), so
 // the blend's error against the exact colour falls as the noise averages; it must refuse
 // neighbours whose hit distances disagree by more than the lobe's roughness spreads them, and
-// leave mirror pixels alone, and refuse neighbours lit otherwise (a light switched on mid-shot).
+// leave mirror pixels and misses alone, and refuse neighbours lit otherwise (a light switched on
+// mid-shot).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -158,6 +159,60 @@ TEST(TemporalBlend, RefusesNeighboursLitOtherwise) {
     EXPECT_LT(blend, 1.1 * clean) << "frame " << c;
     EXPECT_LT(blend, 0.75 * own) << "frame " << c;
   }
+}
+
+// The ceiling ends at z = kCeilingEnd: beyond it the floor's rays find nothing and the pass holds
+// an environment's lookup in the mirror direction of each pixel's own normal, which a normal map
+// fixed to the floor ripples (as a wet deck's). That lookup has no noise: each such pixel must
+// keep it exactly (its truth, computed here from its own normal), where its neighbours' misses,
+// other normals' lookups, would blur the ripples in; the hits must still blend.
+TEST(TemporalBlend, MissesKeepTheirEnvironmentLookup) {
+  constexpr double kCeilingEnd = -3.0;
+  const auto sky = [](const glm::dvec3& d) { return 0.4 + 0.5 * d.y + 0.3 * d.x * d.z; };
+  std::vector<AnalyticFrame> frames;
+  std::vector<ssrcl::Image> truth;  // each miss pixel's lookup, computed apart from the pass
+  size_t misses = 0;
+  for (int f = -2; f <= 2; ++f) {
+    AnalyticFrame a = makeFrame(f, 0.2);
+    ssrcl::Image lookup(kW, kH, 1);
+    const glm::dmat4 inverseProjection = glm::inverse(a.camera.projection), inverseView = glm::inverse(a.camera.view);
+    const glm::dvec3 eye(inverseView[3]);
+    for (int y = 0; y < kH; ++y)
+      for (int x = 0; x < kW; ++x) {
+        if (!(a.depth.at(x, y, 0) < 1e9f)) continue;
+        const glm::dvec3 c = ssrcl::cameraPointAt(inverseProjection, a.camera, x + 0.5, y + 0.5, a.depth.at(x, y, 0));
+        const glm::dvec3 p(inverseView * glm::dvec4(c, 1.0)), view = glm::normalize(p - eye);
+        const glm::dvec3 n = glm::normalize(glm::dvec3(0.15 * std::sin(23.0 * p.x), 1.0, 0.15 * std::cos(19.0 * p.z)));
+        for (int ch = 0; ch < 3; ++ch) a.normal.at(x, y, ch) = float(n[ch]);
+        const glm::dvec3 r(view.x, -view.y, view.z);  // the flat floor's mirror ray meets the ceiling there
+        if ((p + r * (kCeiling / r.y)).z > kCeilingEnd) continue;
+        lookup.at(x, y, 0) = float(sky(glm::reflect(view, n)));
+        for (int ch = 0; ch < 3; ++ch) a.reflection.at(x, y, ch) = lookup.at(x, y, 0);
+        a.reflection.at(x, y, 3) = 0.0f;  // none of the lobe found on screen
+        a.distance.at(x, y, 0) = 0.0f;
+        misses += f == 0;
+      }
+    frames.push_back(std::move(a));
+    truth.push_back(std::move(lookup));
+  }
+  ASSERT_GT(misses, size_t(kW * kH / 8));
+  const ssrcl::Image blended = ssrcl::temporalBlend(window(frames), 2, {});
+  double worst = 0;
+  size_t hitsBlended = 0;
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      if (!(frames[2].depth.at(x, y, 0) < 1e9f)) continue;
+      if (frames[2].distance.at(x, y, 0) > 0.0f) {
+        hitsBlended += blended.at(x, y, 0) != frames[2].reflection.at(x, y, 0);
+        continue;
+      }
+      for (int ch = 0; ch < 3; ++ch)
+        worst = std::max(worst, double(std::abs(blended.at(x, y, ch) - truth[2].at(x, y, 0))));
+    }
+  std::cout << "misses " << misses << ", their largest error against their own lookup " << worst << ", hits blended "
+            << hitsBlended << "\n";
+  EXPECT_LT(worst, 1e-6);
+  EXPECT_GT(hitsBlended, misses / 2);
 }
 
 TEST(TemporalBlend, MirrorPixelsKeepTheirOwnPass) {

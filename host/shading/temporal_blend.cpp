@@ -12,9 +12,6 @@
 namespace ssrcl {
 namespace {
 
-// Where a miss's reflected point is taken: far enough to be a direction for any camera move.
-constexpr double kMissDistance = 1e6;
-
 // A frame's pixel geometry in world space, from its depth and camera (the camera's inverses from
 // its statistics).
 struct FrameGeometry {
@@ -194,13 +191,15 @@ Image temporalBlend(const std::vector<TemporalFrame>& frames, size_t centre, con
       for (int x = 0; x < w; ++x) {
         const float depth = own.depth->at(x, y, 0);
         const float roughness = own.roughness ? own.roughness->at(x, y, 0) : *s.constantRoughness;
-        if (!detail::isSurfaceDepth(depth) || roughness <= s.mirrorRoughness) continue;
+        const double dist = own.distance->at(x, y, 0);
+        // A miss keeps its own pass too: what it holds is the environment's lookup for its own
+        // normal, or nothing, without noise; a neighbour's miss is another normal's lookup (a
+        // rippled or mixed pixel's), which averaging would only blur in.
+        if (!detail::isSurfaceDepth(depth) || roughness <= s.mirrorRoughness || !(dist > 0.0)) continue;
         const glm::dvec3 p = g.point(x, y), n = g.normal(x, y);
         const glm::dvec3 view = glm::normalize(p - g.eye);
-        const double dist = own.distance->at(x, y, 0);
-        const bool miss = !(dist > 0.0);
         // The reflected point: the hit's mirror image behind the reflector, along the viewing ray.
-        const glm::dvec3 reflected = p + view * (miss ? kMissDistance : dist);
+        const glm::dvec3 reflected = p + view * dist;
         // The hit itself, along the mirror direction of the pixel's normal (the lobe's centre).
         const glm::dvec3 hit = p + glm::reflect(view, n) * dist;
         const double spread = double(s.roughnessSpread) * roughness;  // of the hit distance
@@ -210,13 +209,12 @@ Image temporalBlend(const std::vector<TemporalFrame>& frames, size_t centre, con
           const FrameGeometry& o = geometry[j];
           const glm::dvec3 q = o.screen(reflected);
           if (!(q.z > 0.0) || !std::isfinite(q.x) || !std::isfinite(q.y)) continue;
-          if (!miss) {  // the hit seen from the neighbour in front of what it shows there: moved
-            const glm::dvec3 hs = o.screen(hit);
-            const int hx = int(std::floor(hs.x)), hy = int(std::floor(hs.y));
-            if (hs.z > 0.0 && hx >= 0 && hy >= 0 && hx < w && hy < h) {
-              const float shown = frames[j].depth->at(hx, hy, 0);
-              if (detail::isSurfaceDepth(shown) && hs.z < shown * (1.0 - s.movedTolerance) - spread * dist) continue;
-            }
+          // The hit seen from the neighbour in front of what it shows there: moved.
+          const glm::dvec3 hs = o.screen(hit);
+          const int hx = int(std::floor(hs.x)), hy = int(std::floor(hs.y));
+          if (hs.z > 0.0 && hx >= 0 && hy >= 0 && hx < w && hy < h) {
+            const float shown = frames[j].depth->at(hx, hy, 0);
+            if (detail::isSurfaceDepth(shown) && hs.z < shown * (1.0 - s.movedTolerance) - spread * dist) continue;
           }
           // Bilinear over the four pixel centres around q, each tap tested on its own.
           const double fx = q.x - 0.5, fy = q.y - 0.5;
@@ -230,15 +228,13 @@ Image temporalBlend(const std::vector<TemporalFrame>& frames, size_t centre, con
             const glm::dvec3 ps = o.point(sx, sy), ns = o.normal(sx, sy);
             if (glm::dot(n, ns) < cosNormal) continue;
             if (std::abs(glm::dot(ps - p, glm::normalize(n + ns))) > s.planeTolerance * depth) continue;
+            // Its hit distance against the distance from it to the reflected point (a miss: none).
             const double ds = frames[j].distance->at(sx, sy, 0);
-            double match = 1.0;
-            if (miss != !(ds > 0.0)) continue;
-            if (!miss) {  // its hit distance against the distance from it to the reflected point
-              const double expected = glm::length(reflected - ps);
-              const double e = std::abs(ds - expected) / ((s.distanceTolerance + spread) * expected);
-              if (e >= 1.0) continue;
-              match = (1.0 - e) * (1.0 - e);
-            }
+            if (!(ds > 0.0)) continue;
+            const double expected = glm::length(reflected - ps);
+            const double e = std::abs(ds - expected) / ((s.distanceTolerance + spread) * expected);
+            if (e >= 1.0) continue;
+            const double match = (1.0 - e) * (1.0 - e);
             if (!statistics[centre]->radiance.agrees(x, y, statistics[j]->radiance, sx, sy, s)) continue;
             const double wk = bilinear * match;
             for (int c = 0; c < 4; ++c) sum[c] += wk * frames[j].reflection->at(sx, sy, c);
