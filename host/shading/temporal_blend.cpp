@@ -4,6 +4,7 @@
 #include <memory>
 #include <string>
 #include <thread>
+#include <utility>
 
 #include "../io/conventions.hpp"
 #include "ssrcl/error.hpp"
@@ -34,6 +35,15 @@ struct FrameGeometry {
   // Screen position (pixels) and planar depth of a world point.
   glm::dvec3 screen(const glm::dvec3& world) const {
     return cameraToScreen(frame->camera, glm::dvec3(frame->camera.view * glm::dvec4(world, 1.0)));
+  }
+  // The planar depth of a world point in this frame and that of the surface the frame shows at its
+  // pixel (NaN where it lies off the screen or the frame shows no surface there).
+  std::pair<double, double> depthAndShown(const glm::dvec3& world) const {
+    const glm::dvec3 s = screen(world);
+    const Image& d = *frame->depth;
+    if (!(s.z > 0.0) || !(s.x >= 0.0 && s.x < d.width) || !(s.y >= 0.0 && s.y < d.height)) return {s.z, NAN};
+    const float shown = d.at(int(s.x), int(s.y), 0);
+    return {s.z, detail::isSurfaceDepth(shown) ? double(shown) : NAN};
   }
 };
 
@@ -203,18 +213,20 @@ Image temporalBlend(const std::vector<TemporalFrame>& frames, size_t centre, con
         // The hit itself, along the mirror direction of the pixel's normal (the lobe's centre).
         const glm::dvec3 hit = p + glm::reflect(view, n) * dist;
         const double spread = double(s.roughnessSpread) * roughness;  // of the hit distance
+        // Motion shows only where the frame itself shows the hit: a rough lobe's hit (a mean
+        // distance along its centre) may lie on no surface, and a hit may lie off the screen;
+        // a neighbour that shows a surface behind it then says no more than the frame would.
+        const auto [hitDepth, ownShown] = g.depthAndShown(hit);
+        const bool hitShown = std::abs(hitDepth - ownShown) <= ownShown * s.movedTolerance + spread * dist;
         double sum[4] = {0, 0, 0, 0}, weight = 0;
         for (size_t j = 0; j < frames.size(); ++j) {
           if (j == centre) continue;
           const FrameGeometry& o = geometry[j];
           const glm::dvec3 q = o.screen(reflected);
           if (!(q.z > 0.0) || !std::isfinite(q.x) || !std::isfinite(q.y)) continue;
-          // The hit seen from the neighbour in front of what it shows there: moved.
-          const glm::dvec3 hs = o.screen(hit);
-          const int hx = int(std::floor(hs.x)), hy = int(std::floor(hs.y));
-          if (hs.z > 0.0 && hx >= 0 && hy >= 0 && hx < w && hy < h) {
-            const float shown = frames[j].depth->at(hx, hy, 0);
-            if (detail::isSurfaceDepth(shown) && hs.z < shown * (1.0 - s.movedTolerance) - spread * dist) continue;
+          if (hitShown) {  // the hit seen from the neighbour in front of what it shows there: moved
+            const auto [seen, shown] = o.depthAndShown(hit);
+            if (seen < shown * (1.0 - s.movedTolerance) - spread * dist) continue;
           }
           // Bilinear over the four pixel centres around q, each tap tested on its own.
           const double fx = q.x - 0.5, fy = q.y - 0.5;

@@ -10,7 +10,8 @@
 // pixels around it is taken when it lies on the frame pixel's tangent plane, its normal is within
 // maxNormalDegrees, and its own hit distance matches the distance from it to the reflected point;
 // and refused when the frame's hit, seen from the neighbour, is in front of what the neighbour
-// shows there (the object has moved). Weights fall with the hit-distance mismatch. Both tests
+// shows there (the object has moved), where the frame itself shows the hit (a hit on no surface,
+// or off the screen, stands in front of what the frame shows as well). Weights fall with the hit-distance mismatch. Both tests
 // widen with roughness: a rough lobe's hit distance is a mean over hits spread across the lobe,
 // which moves with the view, and its hit (taken along the lobe's centre) need not lie on a surface.
 // Geometry cannot see a light that changes over the window: a tap is also refused where the
