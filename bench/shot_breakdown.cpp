@@ -32,8 +32,11 @@ std::vector<std::vector<uint8_t>> classifyPixels(const std::vector<std::string>&
       for (int x = 0; x < w; ++x) {
         const size_t i = size_t(y) * w + x;
         if (!(it->second.values[i] > 0.0f)) classes[i] |= kMiss;
-        if (x < kEdgeBand * w || x >= (1 - kEdgeBand) * w || y < kEdgeBand * h || y >= (1 - kEdgeBand) * h)
-          classes[i] |= kEdge;
+        if (x < kEdgeBand * w) classes[i] |= kLeft;
+        if (x >= (1 - kEdgeBand) * w) classes[i] |= kRight;
+        if (y < kEdgeBand * h) classes[i] |= kTop;
+        if (y >= (1 - kEdgeBand) * h) classes[i] |= kBottom;
+        if (classes[i] & (kLeft | kRight | kTop | kBottom)) classes[i] |= kEdge;
       }
     out.push_back(std::move(classes));
   }
@@ -43,8 +46,9 @@ std::vector<std::vector<uint8_t>> classifyPixels(const std::vector<std::string>&
 void printBreakdown(std::ostream& out, const std::string& label, const std::vector<test::CyclesReference>& refs,
                     const std::vector<Image>& passes, const std::vector<std::vector<uint8_t>>& classes,
                     const std::vector<Image>* alone) {
-  const char* names[] = {"all", "environment", "hit", "edge band", "interior", "unblended", "unbl. env."};
-  constexpr int kClasses = 7;
+  const char* names[] = {"all",        "environment", "hit",   "edge band", "interior", "unblended",
+                         "unbl. env.", "left",        "right", "top",       "bottom"};
+  constexpr int kClasses = 11;
   Pool pools[kClasses];
   double peak = 0;
   // The references with their values zeroed: the pass's own change along the surface.
@@ -67,8 +71,17 @@ void printBreakdown(std::ostream& out, const std::string& label, const std::vect
           unblended = unblended && passes[t].data[size_t(passes[t].channels) * i + size_t(ch)] ==
                                        (*alone)[t].data[size_t((*alone)[t].channels) * i + size_t(ch)];
       }
-      const bool in[kClasses] = {true,      (c & kMiss) != 0,        !(c & kMiss), (c & kEdge) != 0, !(c & kEdge),
-                                 unblended, unblended && (c & kMiss)};
+      const bool in[kClasses] = {true,
+                                 (c & kMiss) != 0,
+                                 !(c & kMiss),
+                                 (c & kEdge) != 0,
+                                 !(c & kEdge),
+                                 unblended,
+                                 unblended && (c & kMiss),
+                                 (c & kLeft) != 0,
+                                 (c & kRight) != 0,
+                                 (c & kTop) != 0,
+                                 (c & kBottom) != 0};
       for (int k = 0; k < kClasses; ++k)
         if (in[k])
           pools[k].se += se[i], pools[k].seReference += seReference[i], pools[k].sePass += sePass[i], ++pools[k].pixels;
@@ -82,7 +95,7 @@ void printBreakdown(std::ostream& out, const std::string& label, const std::vect
          "pass's, as tPSNR (dB)\n"
       << std::fixed << std::setprecision(2);
   for (int k = 0; k < kClasses; ++k) {
-    if (k >= 5 && !alone) continue;
+    if ((k == 5 || k == 6) && !alone) continue;  // "unblended" needs the frames alone
     const Pool& p = pools[k];
     out << "  " << std::left << std::setw(12) << names[k] << std::right << std::setw(8)
         << 100.0 * double(p.pixels) / double(pools[0].pixels) << "%" << std::setw(8) << 100.0 * p.se / pools[0].se

@@ -22,6 +22,14 @@ declare -A args=(
   [medium-t2]="--quality medium --temporal 2"
   [medium-t3]="--quality medium --temporal 3"
   [medium-t8]="--quality medium --temporal 8"
+  [medium-t3-n1]="--quality medium --temporal 3 --neighbours 1"
+  [medium-t3-n2]="--quality medium --temporal 3 --neighbours 2"
+  [medium-t5-n2]="--quality medium --temporal 5 --neighbours 2"
+  [medium-t3-ef0]="--quality medium --temporal 3 --edge-fade 0"
+  [medium-t3-ef10]="--quality medium --temporal 3 --edge-fade 0.1"
+  [medium-t3-ef15]="--quality medium --temporal 3 --edge-fade 0.15"
+  [medium-t3-ef30]="--quality medium --temporal 3 --edge-fade 0.3"
+  [medium-t3-n2-ef10]="--quality medium --temporal 3 --neighbours 2 --edge-fade 0.1"
   [medium-frameseeds]="--quality medium --temporal 0"  # each frame its own seed, as --temporal's
 )
 configs=("$@")

@@ -4,12 +4,14 @@
 // must find each neighbour where it reflects the same ceiling point (the reflected point), so
 // the blend's error against the exact colour falls as the noise averages; it must refuse
 // neighbours whose hit distances disagree by more than the lobe's roughness spreads them, and
-// leave mirror pixels alone, and refuse neighbours lit otherwise (a light switched on mid-shot).
+// leave mirror pixels and misses alone, and refuse neighbours lit otherwise (a light switched on
+// mid-shot).
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <glm/glm.hpp>
+#include <optional>
 
 #include "ssrcl/error.hpp"
 #include "ssrcl/temporal.hpp"
@@ -158,6 +160,150 @@ TEST(TemporalBlend, RefusesNeighboursLitOtherwise) {
     EXPECT_LT(blend, 1.1 * clean) << "frame " << c;
     EXPECT_LT(blend, 0.75 * own) << "frame " << c;
   }
+}
+
+// The ceiling ends at z = kCeilingEnd: beyond it the floor's rays find nothing and the pass holds
+// an environment's lookup in the mirror direction of each pixel's own normal, which a normal map
+// fixed to the floor ripples (as a wet deck's). That lookup has no noise: each such pixel must
+// keep it exactly (its truth, computed here from its own normal), where its neighbours' misses,
+// other normals' lookups, would blur the ripples in; the hits must still blend.
+TEST(TemporalBlend, MissesKeepTheirEnvironmentLookup) {
+  constexpr double kCeilingEnd = -3.0;
+  const auto sky = [](const glm::dvec3& d) { return 0.4 + 0.5 * d.y + 0.3 * d.x * d.z; };
+  std::vector<AnalyticFrame> frames;
+  std::vector<ssrcl::Image> truth;  // each miss pixel's lookup, computed apart from the pass
+  size_t misses = 0;
+  for (int f = -2; f <= 2; ++f) {
+    AnalyticFrame a = makeFrame(f, 0.2);
+    ssrcl::Image lookup(kW, kH, 1);
+    const glm::dmat4 inverseProjection = glm::inverse(a.camera.projection), inverseView = glm::inverse(a.camera.view);
+    const glm::dvec3 eye(inverseView[3]);
+    for (int y = 0; y < kH; ++y)
+      for (int x = 0; x < kW; ++x) {
+        if (!(a.depth.at(x, y, 0) < 1e9f)) continue;
+        const glm::dvec3 c = ssrcl::cameraPointAt(inverseProjection, a.camera, x + 0.5, y + 0.5, a.depth.at(x, y, 0));
+        const glm::dvec3 p(inverseView * glm::dvec4(c, 1.0)), view = glm::normalize(p - eye);
+        const glm::dvec3 n = glm::normalize(glm::dvec3(0.15 * std::sin(23.0 * p.x), 1.0, 0.15 * std::cos(19.0 * p.z)));
+        for (int ch = 0; ch < 3; ++ch) a.normal.at(x, y, ch) = float(n[ch]);
+        const glm::dvec3 r(view.x, -view.y, view.z);  // the flat floor's mirror ray meets the ceiling there
+        if ((p + r * (kCeiling / r.y)).z > kCeilingEnd) continue;
+        lookup.at(x, y, 0) = float(sky(glm::reflect(view, n)));
+        for (int ch = 0; ch < 3; ++ch) a.reflection.at(x, y, ch) = lookup.at(x, y, 0);
+        a.reflection.at(x, y, 3) = 0.0f;  // none of the lobe found on screen
+        a.distance.at(x, y, 0) = 0.0f;
+        misses += f == 0;
+      }
+    frames.push_back(std::move(a));
+    truth.push_back(std::move(lookup));
+  }
+  ASSERT_GT(misses, size_t(kW * kH / 8));
+  const ssrcl::Image blended = ssrcl::temporalBlend(window(frames), 2, {});
+  double worst = 0;
+  size_t hitsBlended = 0;
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      if (!(frames[2].depth.at(x, y, 0) < 1e9f)) continue;
+      if (frames[2].distance.at(x, y, 0) > 0.0f) {
+        hitsBlended += blended.at(x, y, 0) != frames[2].reflection.at(x, y, 0);
+        continue;
+      }
+      for (int ch = 0; ch < 3; ++ch)
+        worst = std::max(worst, double(std::abs(blended.at(x, y, ch) - truth[2].at(x, y, 0))));
+    }
+  std::cout << "misses " << misses << ", their largest error against their own lookup " << worst << ", hits blended "
+            << hitsBlended << "\n";
+  EXPECT_LT(worst, 1e-6);
+  EXPECT_GT(hitsBlended, misses / 2);
+}
+
+// A pan: the camera turns 1.5 degrees a frame about its own position over the floor, which
+// reflects either a plane y = kFreeHeight that no frame shows (as a rough lobe's hit, a mean
+// distance along its centre, that lies on no surface), or a wall z = wallZ that the frames show
+// (its own pixels reflect nothing: hit distance 0).
+constexpr double kFreeHeight = 0.8;
+AnalyticFrame makePanFrame(int f, std::optional<double> wallZ, float roughness = 0.3f) {
+  AnalyticFrame a;
+  const glm::dvec3 eye(0.0, 1.0, 4.0);
+  const double yaw = glm::radians(1.5 * f);
+  a.camera = ssrcl::test::perspectiveCamera(kW, kH, eye, eye + glm::dvec3(-std::sin(yaw), -0.3, -std::cos(yaw)), 60.0);
+  const glm::dmat4 inverseProjection = glm::inverse(a.camera.projection), inverseView = glm::inverse(a.camera.view);
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      const glm::dvec3 c = ssrcl::cameraPointAt(inverseProjection, a.camera, x + 0.5, y + 0.5, 1.0);
+      const glm::dvec3 dir = glm::normalize(glm::dvec3(inverseView * glm::dvec4(c, 0.0)));
+      const double toFloor = dir.y < -1e-3 ? -eye.y / dir.y : INFINITY;
+      const double toWall = wallZ && dir.z < 0.0 ? (*wallZ - eye.z) / dir.z : INFINITY;
+      a.depth.at(x, y, 0) = 1e10f;
+      if (std::isinf(std::min(toFloor, toWall))) continue;
+      const glm::dvec3 p = eye + dir * std::min(toFloor, toWall);
+      a.depth.at(x, y, 0) = float(-(a.camera.view * glm::dvec4(p, 1.0)).z);
+      a.roughness.at(x, y, 0) = roughness;
+      if (toWall < toFloor) {
+        a.normal.at(x, y, 2) = 1.0f;
+        continue;
+      }
+      a.normal.at(x, y, 1) = 1.0f;
+      const glm::dvec3 r(dir.x, -dir.y, dir.z);
+      const double d = wallZ ? (*wallZ - p.z) / r.z : (kFreeHeight - p.y) / r.y;
+      const glm::dvec3 hit = p + r * d;
+      a.distance.at(x, y, 0) = float(d);
+      a.truth.at(x, y, 0) = float(wallZ ? texture(hit.x, 3.0 * hit.y) : texture(hit.x, hit.z));
+      for (int ch = 0; ch < 3; ++ch)
+        a.reflection.at(x, y, ch) = float(a.truth.at(x, y, 0) + 0.2 * noise(f, y * kW + x, ch));
+      a.reflection.at(x, y, 3) = 1.0f;
+    }
+  return a;
+}
+
+// A neighbour that shows a surface behind the hit says the hit's object has moved only where the
+// frame itself shows the hit: a hit on no surface stands in front of what every frame shows along
+// its line of sight, the frame's own included. Over a pan (each pixel's line of sight the same in
+// every frame) the blend must take the neighbours and average the noise out.
+TEST(TemporalBlend, AHitOnNoSurfaceIsNotMotion) {
+  std::vector<AnalyticFrame> frames;
+  for (int f = -2; f <= 2; ++f) frames.push_back(makePanFrame(f, std::nullopt));
+  const double own = rmsError(frames[2].reflection, frames[2]);
+  const double blend = rmsError(ssrcl::temporalBlend(window(frames), 2, {}), frames[2]);
+  std::cout << "RMS error against the exact plane: own " << own << ", blended over 5 frames " << blend << "\n";
+  EXPECT_LT(blend, own / 1.8);  // sqrt(5) = 2.2 where all are found
+}
+
+// The wall the floor reflects stands 6 units away in frame 0 and 9 in the others (it moved): the
+// pixels whose hit frame 0 shows (on the wall there) must keep their own pass, the neighbours
+// showing the wall behind it; with the wall still, the same pixels blend. A sharp lobe (roughness
+// 0.05) and the widest hit-distance tolerance, so that the motion test, not the distances, refuses.
+TEST(TemporalBlend, RefusesAHitThatMoved) {
+  const auto blendedShare = [](double otherWall, float movedTolerance) {
+    std::vector<AnalyticFrame> frames;
+    for (int f = -2; f <= 2; ++f) frames.push_back(makePanFrame(f, f == 0 ? -2.0 : otherWall, 0.05f));
+    const AnalyticFrame& a = frames[2];
+    ssrcl::TemporalSettings wide;
+    wide.distanceTolerance = 0.99f;
+    wide.movedTolerance = movedTolerance;
+    const ssrcl::Image blended = ssrcl::temporalBlend(window(frames), 2, wide);
+    const glm::dmat4 inverseProjection = glm::inverse(a.camera.projection), inverseView = glm::inverse(a.camera.view);
+    size_t shown = 0, changed = 0;
+    for (int y = 0; y < kH; ++y)
+      for (int x = 0; x < kW; ++x) {
+        if (!(a.distance.at(x, y, 0) > 0.0f)) continue;
+        // Where its hit lies on screen: the frame shows it there when it is the wall's pixel.
+        const glm::dvec3 c = ssrcl::cameraPointAt(inverseProjection, a.camera, x + 0.5, y + 0.5, a.depth.at(x, y, 0));
+        const glm::dvec3 p(inverseView * glm::dvec4(c, 1.0)), eye(inverseView[3]);
+        const glm::dvec3 v = glm::normalize(p - eye);
+        const glm::dvec3 hit = p + glm::dvec3(v.x, -v.y, v.z) * double(a.distance.at(x, y, 0));
+        const glm::dvec3 s = ssrcl::cameraToScreen(a.camera, glm::dvec3(a.camera.view * glm::dvec4(hit, 1.0)));
+        if (!(s.x >= 0 && s.y >= 0 && s.x < kW && s.y < kH) || a.normal.at(int(s.x), int(s.y), 2) != 1.0f) continue;
+        ++shown;
+        changed += blended.at(x, y, 0) != a.reflection.at(x, y, 0);
+      }
+    std::cout << "wall at -2, the others' at " << otherWall << ": " << changed << " of " << shown
+              << " pixels whose hit the frame shows blended\n";
+    EXPECT_GT(shown, size_t(kW * kH / 20));
+    return double(changed) / double(shown);
+  };
+  EXPECT_LT(blendedShare(-5.0, 0.02f), 0.1);
+  EXPECT_GT(blendedShare(-5.0, 0.9f), 0.5);  // the motion test, not the distances, refused them
+  EXPECT_GT(blendedShare(-2.0, 0.02f), 0.9);
 }
 
 TEST(TemporalBlend, MirrorPixelsKeepTheirOwnPass) {

@@ -4,6 +4,7 @@
 #include <memory>
 #include <string>
 #include <thread>
+#include <utility>
 
 #include "../io/conventions.hpp"
 #include "ssrcl/error.hpp"
@@ -11,9 +12,6 @@
 
 namespace ssrcl {
 namespace {
-
-// Where a miss's reflected point is taken: far enough to be a direction for any camera move.
-constexpr double kMissDistance = 1e6;
 
 // A frame's pixel geometry in world space (its surface pixels' points and normals from its
 // statistics, computed there once per frame).
@@ -30,6 +28,16 @@ struct FrameGeometry {
   // Screen position (pixels) and planar depth of a world point.
   glm::dvec3 screen(const glm::dvec3& world) const {
     return cameraToScreen(frame->camera, glm::dvec3(frame->camera.view * glm::dvec4(world, 1.0)));
+  }
+  // The planar depth of a world point in this frame and that of the surface the frame shows at its
+  // pixel (NaN where it lies off the screen or the frame shows no surface there).
+  std::pair<double, double> depthAndShown(const glm::dvec3& world) const { return depthAndShownAt(screen(world)); }
+  // The same of its screen position s.
+  std::pair<double, double> depthAndShownAt(const glm::dvec3& s) const {
+    const Image& d = *frame->depth;
+    if (!(s.z > 0.0) || !(s.x >= 0.0 && s.x < d.width) || !(s.y >= 0.0 && s.y < d.height)) return {s.z, NAN};
+    const float shown = d.at(int(s.x), int(s.y), 0);
+    return {s.z, detail::isSurfaceDepth(shown) ? double(shown) : NAN};
   }
 };
 
@@ -241,16 +249,23 @@ Image temporalBlend(const std::vector<TemporalFrame>& frames, size_t centre, con
       for (int x = 0; x < w; ++x) {
         const float depth = own.depth->at(x, y, 0);
         const float roughness = own.roughness ? own.roughness->at(x, y, 0) : *s.constantRoughness;
-        if (!detail::isSurfaceDepth(depth) || roughness <= s.mirrorRoughness) continue;
+        const double dist = own.distance->at(x, y, 0);
+        // A miss keeps its own pass too: what it holds is the environment's lookup for its own
+        // normal, or nothing, without noise; a neighbour's miss is another normal's lookup (a
+        // rippled or mixed pixel's), which averaging would only blur in.
+        if (!detail::isSurfaceDepth(depth) || roughness <= s.mirrorRoughness || !(dist > 0.0)) continue;
         const glm::dvec3 &p = g.point(x, y), &n = g.normal(x, y);
         const glm::dvec3 view = glm::normalize(p - g.eye);
-        const double dist = own.distance->at(x, y, 0);
-        const bool miss = !(dist > 0.0);
         // The reflected point: the hit's mirror image behind the reflector, along the viewing ray.
-        const glm::dvec3 reflected = p + view * (miss ? kMissDistance : dist);
+        const glm::dvec3 reflected = p + view * dist;
         // The hit itself, along the mirror direction of the pixel's normal (the lobe's centre).
         const glm::dvec3 hit = p + glm::reflect(view, n) * dist;
         const double spread = double(s.roughnessSpread) * roughness;  // of the hit distance
+        // Motion shows only where the frame itself shows the hit: a rough lobe's hit (a mean
+        // distance along its centre) may lie on no surface, and a hit may lie off the screen;
+        // a neighbour that shows a surface behind it then says no more than the frame would.
+        const auto [hitDepth, ownShown] = g.depthAndShown(hit);
+        const bool hitShown = std::abs(hitDepth - ownShown) <= ownShown * s.movedTolerance + spread * dist;
         // Every neighbour's projections first, and the pixels they fall on asked for: a
         // neighbour's pixels are far apart in memory from the last one's, and asked for together
         // they arrive together, not one at a time behind each neighbour's taps.
@@ -258,7 +273,7 @@ Image temporalBlend(const std::vector<TemporalFrame>& frames, size_t centre, con
           if (j == centre) continue;
           Projection& at = projected[j];
           at.reflected = geometry[j].screen(reflected);
-          if (!miss) {
+          if (hitShown) {
             at.hit = geometry[j].screen(hit);
             prefetchPixel(*frames[j].depth, at.hit.x, at.hit.y);
           }
@@ -271,13 +286,9 @@ Image temporalBlend(const std::vector<TemporalFrame>& frames, size_t centre, con
           const FrameGeometry& o = geometry[j];
           const glm::dvec3& q = projected[j].reflected;
           if (!(q.z > 0.0) || !std::isfinite(q.x) || !std::isfinite(q.y)) continue;
-          if (!miss) {  // the hit seen from the neighbour in front of what it shows there: moved
-            const glm::dvec3& hs = projected[j].hit;
-            const int hx = int(std::floor(hs.x)), hy = int(std::floor(hs.y));
-            if (hs.z > 0.0 && hx >= 0 && hy >= 0 && hx < w && hy < h) {
-              const float shown = frames[j].depth->at(hx, hy, 0);
-              if (detail::isSurfaceDepth(shown) && hs.z < shown * (1.0 - s.movedTolerance) - spread * dist) continue;
-            }
+          if (hitShown) {  // the hit seen from the neighbour in front of what it shows there: moved
+            const auto [seen, shown] = o.depthAndShownAt(projected[j].hit);
+            if (seen < shown * (1.0 - s.movedTolerance) - spread * dist) continue;
           }
           // Bilinear over the four pixel centres around q, each tap tested on its own.
           const double fx = q.x - 0.5, fy = q.y - 0.5;
@@ -291,15 +302,13 @@ Image temporalBlend(const std::vector<TemporalFrame>& frames, size_t centre, con
             const glm::dvec3 &ps = o.point(sx, sy), &ns = o.normal(sx, sy);
             if (glm::dot(n, ns) < cosNormal) continue;
             if (std::abs(glm::dot(ps - p, glm::normalize(n + ns))) > s.planeTolerance * depth) continue;
+            // Its hit distance against the distance from it to the reflected point (a miss: none).
             const double ds = frames[j].distance->at(sx, sy, 0);
-            double match = 1.0;
-            if (miss != !(ds > 0.0)) continue;
-            if (!miss) {  // its hit distance against the distance from it to the reflected point
-              const double expected = glm::length(reflected - ps);
-              const double e = std::abs(ds - expected) / ((s.distanceTolerance + spread) * expected);
-              if (e >= 1.0) continue;
-              match = (1.0 - e) * (1.0 - e);
-            }
+            if (!(ds > 0.0)) continue;
+            const double expected = glm::length(reflected - ps);
+            const double e = std::abs(ds - expected) / ((s.distanceTolerance + spread) * expected);
+            if (e >= 1.0) continue;
+            const double match = (1.0 - e) * (1.0 - e);
             if (!statistics[centre]->radiance.agrees(x, y, statistics[j]->radiance, sx, sy, s)) continue;
             const double wk = bilinear * match;
             for (int c = 0; c < 4; ++c) sum[c] += wk * frames[j].reflection->at(sx, sy, c);

@@ -10,7 +10,8 @@
 // pixels around it is taken when it lies on the frame pixel's tangent plane, its normal is within
 // maxNormalDegrees, and its own hit distance matches the distance from it to the reflected point;
 // and refused when the frame's hit, seen from the neighbour, is in front of what the neighbour
-// shows there (the object has moved). Weights fall with the hit-distance mismatch. Both tests
+// shows there (the object has moved), where the frame itself shows the hit (a hit on no surface,
+// or off the screen, stands in front of what the frame shows as well). Weights fall with the hit-distance mismatch. Both tests
 // widen with roughness: a rough lobe's hit distance is a mean over hits spread across the lobe,
 // which moves with the view, and its hit (taken along the lobe's centre) need not lie on a surface.
 // Geometry cannot see a light that changes over the window: a tap is also refused where the
@@ -20,6 +21,10 @@
 // otherwise hide the change on a textured reflection. The ratio: a camera move's views of one
 // reflection disagree locally by up to 2x beyond their noise (the view-dependent errors that the
 // blend averages away), so a light that changes by less is averaged too.
+// Pixels whose rays found nothing (hit distance 0) keep their own pass, and a neighbour's such
+// pixels are never taken: a miss holds the environment's lookup for its own normal (or nothing),
+// which has no noise to average, and a neighbour's is another normal's (a rippled surface, a
+// pixel mixing two surfaces).
 #include <memory>
 #include <optional>
 #include <vector>
@@ -49,10 +54,10 @@ struct TemporalFrame {
 };
 
 struct TemporalSettings {
-  float planeTolerance = 0.02f;            // off the tangent plane by more than this share of depth: refused
-  float maxNormalDegrees = 45.0f;          // normals further apart: refused
-  float distanceTolerance = 0.2f;          // hit distance off by more than this share: refused
-  float movedTolerance = 0.02f;            // the hit this share of depth in front of the neighbour's surface: moved
+  float planeTolerance = 0.02f;    // off the tangent plane by more than this share of depth: refused
+  float maxNormalDegrees = 45.0f;  // normals further apart: refused
+  float distanceTolerance = 0.2f;  // hit distance off by more than this share: refused
+  float movedTolerance = 0.02f;    // the hit this share of depth in front of the neighbour's surface: moved
   // Both tests widen by this times roughness times the hit distance: measured on Cycles shots
   // (docs/BENCHMARKS.md "Shots"), a rough floor's hit distance is off by more than 20% between
   // views for most of its pixels, and its hit lies in front of the surface the neighbour shows.
@@ -73,8 +78,8 @@ void validateTemporalSettings(const TemporalSettings& settings);
 // Error(InvalidArgument) where its reflection, depth or normal is missing or of another size than its camera.
 std::shared_ptr<const TemporalFrameStatistics> temporalFrameStatistics(const TemporalFrame& frame);
 
-// The reflection of frames[centre] blended with the other frames: per pixel the weighted mean of
-// its own pass (weight 1) and every neighbour's accepted pixels (bilinear weight times the
+// The reflection of frames[centre] blended with the other frames: per pixel with a hit, the
+// weighted mean of its own pass (weight 1) and every neighbour's accepted pixels (bilinear weight times the
 // distance-mismatch weight). Same inputs, same output, whatever the thread count and whether the
 // frames' statistics were given. Throws Error(InvalidArgument) for frames of different sizes or
 // missing images, or statistics of another size.
