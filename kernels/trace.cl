@@ -653,16 +653,41 @@ inline float4 bounce_found(__global const float4* color_pyramid, int2 size, floa
   return (float4)(color_pyramid[cell2.y * size.x + cell2.x].xyz, edge_confidence(ray_screen(ray2, t2), size, edge_fade));
 }
 
-// Traces a round's live rays (lanes without one are left as they are): Hi-Z in packets, or the
-// reference tracers a ray at a time.
-inline void trace_round(TraceScene* sc, float linear_step, const ScreenRay* rays, const float3* dirs, const int* live,
-                        float* t_hit, int2* hit_cell) {
+// A round of rays as the tracers take them: each lane's screen ray and direction, whether it has
+// one (live: lanes without one are traced too, their results unused), and what it finds (t, or
+// negative on a miss, and the pixel).
+typedef struct {
+  ScreenRay ray[SSRCL_TRACE_ROUND];
+  float3 dir[SSRCL_TRACE_ROUND];
+  int live[SSRCL_TRACE_ROUND];
+  float t[SSRCL_TRACE_ROUND];
+  int2 cell[SSRCL_TRACE_ROUND];
+} Round;
+
+inline void round_clear(Round* r) {
+  for (int k = 0; k < SSRCL_TRACE_ROUND; ++k) {
+    r->ray[k] = no_ray();
+    r->dir[k] = (float3)(0.0f);
+    r->live[k] = 0;
+    r->t[k] = -1.0f;
+  }
+}
+
+// Traces a round's live rays, lane k in frame sc[k] (its steps counted on from there): Hi-Z in
+// packets, or the reference tracers a ray at a time.
+inline void trace_round(TraceScene* sc, float linear_step, Round* r) {
 #if SSRCL_TRACER == SSRCL_TRACER_HIZ && !SSRCL_TRACE_SCALAR
-  trace_hiz_packets(sc, rays, dirs, live, t_hit, hit_cell);
+  trace_hiz_packets(sc, r->ray, r->dir, r->live, r->t, r->cell);
 #else
   for (int k = 0; k < SSRCL_TRACE_ROUND; ++k)
-    if (live[k]) t_hit[k] = trace_ray(&sc[k], linear_step, &rays[k], dirs[k], &hit_cell[k]);
+    if (r->live[k]) r->t[k] = trace_ray(&sc[k], linear_step, &r->ray[k], r->dir[k], &r->cell[k]);
 #endif
+}
+
+// The ray slots [*next, returned) of this work-item: those of its SSRCL_TRACE_PIXELS listed pixels.
+inline int work_item_rays(int listed, int batch_size, int* next) {
+  *next = (int)get_global_id(0) * SSRCL_TRACE_PIXELS * batch_size;
+  return min(((int)get_global_id(0) + 1) * SSRCL_TRACE_PIXELS, listed) * batch_size;
 }
 
 // Counting mode (SSRCL_COUNT_WORK): texel reads and the iteration histogram (ssrcl_shared.h).
@@ -702,24 +727,18 @@ __kernel void trace_rays(TraceParams params, __global const float* hzb, __global
   // The rays of SSRCL_TRACE_PIXELS listed pixels per work-item, in rounds of up to SSRCL_TRACE_ROUND:
   // made one by one (skipping the slots a pixel has no ray in, so lanes stay full where pixels have
   // one ray, as mirror pixels do), traced together in lanes (Hi-Z), then shaded one by one.
-  const int end = min(((int)get_global_id(0) + 1) * SSRCL_TRACE_PIXELS, params.listed) * batch_size;
-  int next = (int)get_global_id(0) * SSRCL_TRACE_PIXELS * batch_size;
+  int next;
+  const int end = work_item_rays(params.listed, batch_size, &next);
   while (next < end) {
     PixelRay lane[SSRCL_TRACE_ROUND];
     TraceScene scene[SSRCL_TRACE_ROUND];
-    ScreenRay lane_ray[SSRCL_TRACE_ROUND];
-    float3 lane_dir[SSRCL_TRACE_ROUND];
-    int lane_live[SSRCL_TRACE_ROUND];  // a screen ray to trace
-    float lane_t[SSRCL_TRACE_ROUND];
-    int2 lane_cell[SSRCL_TRACE_ROUND];
+    Round first;
+    round_clear(&first);
     for (int k = 0; k < SSRCL_TRACE_ROUND; ++k) {
       const TraceScene sc = {size, hzb, levels, level_count, planes, normals, params.max_iterations, 0, 0, 0, 0, 0,
                              range, guess, 0, -1.0f, (int2)(0)};
       scene[k] = sc;  // every lane's: the packets read the frame from scene[0]
-      lane[k].traced = lane_live[k] = 0;
-      lane_ray[k] = no_ray();
-      lane_dir[k] = (float3)(0.0f);
-      lane_t[k] = -1.0f;
+      lane[k].traced = 0;
     }
     // The round's rays up to their directions, one by one; their directions eight at a time
     // (sample_reflection_lanes); then their screen rays, one by one. A ray whose sample points
@@ -796,12 +815,12 @@ __kernel void trace_rays(TraceParams params, __global const float* hzb, __global
       ray_hit[made.record] = (float4)(dir, -1.0f);
       ray_radiance[made.record] = (float4)(0.0f, 0.0f, 0.0f, made.pdf);
       lane[k] = made;
-      lane_dir[k] = dir;
-      lane_live[k] = drawn_live[j] != 0;
-      lane_ray[k] = drawn_ray[j];
+      first.dir[k] = dir;
+      first.live[k] = drawn_live[j] != 0;
+      first.ray[k] = drawn_ray[j];
       ++k;
     }
-    trace_round(scene, linear_step, lane_ray, lane_dir, lane_live, lane_t, lane_cell);
+    trace_round(scene, linear_step, &first);
 
     // Shading, in two passes around the second rays of hits on glossy pixels, which are traced
     // together as the first were: what each hit needs of its pixel, then what the second finds.
@@ -809,25 +828,19 @@ __kernel void trace_rays(TraceParams params, __global const float* hzb, __global
     float3 hit_point[SSRCL_TRACE_ROUND];
     float2 hit_screen[SSRCL_TRACE_ROUND];
     int hit_glossy[SSRCL_TRACE_ROUND];  // the hit is on a glossy pixel whose base is known
-    ScreenRay second_ray[SSRCL_TRACE_ROUND];
-    float3 second_dir[SSRCL_TRACE_ROUND];
-    int second_live[SSRCL_TRACE_ROUND];
-    float second_t[SSRCL_TRACE_ROUND];
-    int2 second_cell[SSRCL_TRACE_ROUND];
+    Round second;
+    round_clear(&second);
     for (int k = 0; k < SSRCL_TRACE_ROUND; ++k) {
-      hit_glossy[k] = second_live[k] = 0;
-      second_ray[k] = no_ray();
-      second_dir[k] = (float3)(0.0f);
-      second_t[k] = -1.0f;
+      hit_glossy[k] = 0;
       if (!lane[k].traced) continue;
       const int sample = lane[k].sample;
-      const float3 p = lane[k].p, dir = lane_dir[k];
+      const float3 p = lane[k].p, dir = first.dir[k];
       const float alpha = lane[k].alpha;
       const bool mirror = lane[k].mirror;
       const TraceScene* sc = &scene[k];
-      const ScreenRay ray = lane_ray[k];
-      int2 cell = lane_cell[k];  // the pixel whose surface the ray hit; its colour is the hit's colour
-      float t = lane_t[k];
+      const ScreenRay ray = first.ray[k];
+      int2 cell = first.cell[k];  // the pixel whose surface the ray hit; its colour is the hit's colour
+      float t = first.t[k];
 #if SSRCL_BACK_KNOWN
       if (t < 0.0f && sc->past) {
         t = sc->past_t;
@@ -838,13 +851,13 @@ __kernel void trace_rays(TraceParams params, __global const float* hzb, __global
       // Only the primary ray's passage counts: the glossy hit's second ray below only shades the hit.
       ray_state[lane[k].record] = (sc->behind ? SSRCL_RAY_BEHIND : 0) | (t >= 0.0f && sc->thick ? SSRCL_RAY_THICK : 0);
 #endif
-      lane_t[k] = t;
+      first.t[k] = t;
       if (t < 0.0f) continue;
 
       float2 s = ray_screen(&ray, t);
       float3 hit = ray_point(&ray, t);
       cell = clamp(cell, (int2)(0, 0), size - 1);
-      lane_cell[k] = cell;
+      first.cell[k] = cell;
       int q = cell.y * size.x + cell.x;
       // A prefiltered hit is looked up once the batch's hits are counted (hit_prefilter.cl): recorded
       // as the screen position and the mip of its footprint.
@@ -866,25 +879,25 @@ __kernel void trace_rays(TraceParams params, __global const float* hzb, __global
       hit_glossy[k] =
           !prefiltered && params.has_base && nq.w < params.glossy_hit_roughness && (SSRCL_MATERIAL_HITS || bounce);
       if (hit_glossy[k] && bounce)
-        second_live[k] = bounce_ray(proj, size, near_plane, far_plane, mirror_roughness, hit, dir, nq,
+        second.live[k] = bounce_ray(proj, size, near_plane, far_plane, mirror_roughness, hit, dir, nq,
                                     fmax(roughness_to_alpha(nq.w, SSRCL_ROUGHNESS_MAPPING), 1e-4f), q, sample, seed,
-                                    &second_ray[k], &second_dir[k]);
+                                    &second.ray[k], &second.dir[k]);
     }
     // A second ray's budget of steps is what its first left (scene[k].iterations).
-    trace_round(scene, linear_step, second_ray, second_dir, second_live, second_t, second_cell);
+    trace_round(scene, linear_step, &second);
 
     for (int k = 0; k < SSRCL_TRACE_ROUND; ++k) {
       if (!lane[k].traced) continue;
       if (SSRCL_COUNT_WORK) count_work(work_counters, lane[k].gid, &scene[k]);
-      if (lane_t[k] < 0.0f) continue;
-      const int2 cell = lane_cell[k];
+      if (first.t[k] < 0.0f) continue;
+      const int2 cell = first.cell[k];
       const int q = cell.y * size.x + cell.x;
-      const float3 dir = lane_dir[k];
+      const float3 dir = first.dir[k];
       float4 radiance = hit_radiance[k];
       if (hit_glossy[k]) {
         const float4 nq = normals[q];
         const float alpha_q = fmax(roughness_to_alpha(nq.w, SSRCL_ROUGHNESS_MAPPING), 1e-4f);
-        const float4 found = bounce_found(color_pyramid, size, edge_fade, &second_ray[k], second_t[k], second_cell[k]);
+        const float4 found = bounce_found(color_pyramid, size, edge_fade, &second.ray[k], second.t[k], second.cell[k]);
 #if SSRCL_MATERIAL_HITS
         // The specular colour times E(the hit's F0, its roughness, toward this pixel) times what the
         // ray finds: Cycles' GlossCol is ~1 on dielectrics and metals alike, the Fresnel and a metal's

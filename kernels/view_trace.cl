@@ -100,23 +100,16 @@ __kernel void trace_views(ViewTraceParams params, __global const ViewCamera* vie
   const int2 size = (int2)(cam.width, cam.height);
   // The rays of SSRCL_TRACE_PIXELS listed pixels per work-item, in rounds of the ones that go on
   // in this view, traced together (trace.cl trace_round) and then taken or left one by one.
-  const int end = min(((int)get_global_id(0) + 1) * SSRCL_TRACE_PIXELS, params.listed) * batch_size;
-  int next = (int)get_global_id(0) * SSRCL_TRACE_PIXELS * batch_size;
+  int next;
+  const int end = work_item_rays(params.listed, batch_size, &next);
   while (next < end) {
     ViewRay lane[SSRCL_TRACE_ROUND];
     TraceScene scene[SSRCL_TRACE_ROUND];
-    ScreenRay lane_ray[SSRCL_TRACE_ROUND];
-    float3 lane_dir[SSRCL_TRACE_ROUND];
-    int lane_live[SSRCL_TRACE_ROUND];
-    float lane_t[SSRCL_TRACE_ROUND];
-    int2 lane_cell[SSRCL_TRACE_ROUND];
+    Round round;
+    round_clear(&round);
     for (int k = 0; k < SSRCL_TRACE_ROUND; ++k) {
       const TraceScene sc = {size, hzb, levels, params.level_count, planes, normals, params.max_iterations, 0, 0, 0, 0, 0};
       scene[k] = sc;
-      lane_ray[k] = no_ray();
-      lane_dir[k] = (float3)(0.0f);
-      lane_live[k] = 0;
-      lane_t[k] = -1.0f;
     }
     int count = 0;
     while (count < SSRCL_TRACE_ROUND && next < end) {
@@ -159,17 +152,17 @@ __kernel void trace_views(ViewTraceParams params, __global const ViewCamera* vie
         const float shown = positions[o.y * size.x + o.x].w;
         scene[k].seen = fabs(shown + pk.z) <= 0.02f * -pk.z;
       }
-      lane_dir[k] = dk;
-      lane_live[k] = segment_ray(proj, size, pk + dk * u0, pk + dk * u1, &lane_ray[k]);
+      round.dir[k] = dk;
+      round.live[k] = segment_ray(proj, size, pk + dk * u0, pk + dk * u1, &round.ray[k]);
     }
-    trace_round(scene, params.linear_step, lane_ray, lane_dir, lane_live, lane_t, lane_cell);
+    trace_round(scene, params.linear_step, &round);
 
     for (int k = 0; k < count; ++k) {
-      const float t = lane_t[k];
+      const float t = round.t[k];
       if (t < 0.0f) continue;
       const ViewRay r = lane[k];
-      const ScreenRay ray = lane_ray[k];
-      const int2 cell = clamp(lane_cell[k], (int2)(0, 0), size - 1);
+      const ScreenRay ray = round.ray[k];
+      const int2 cell = clamp(round.cell[k], (int2)(0, 0), size - 1);
       const float3 hit_k = ray_point(&ray, t);
       const float3 hit_main = mat_mul(vload16(0, cam.to_main), (float4)(hit_k, 1.0f)).xyz;
       // The texel hit: its surface point, not the ray's (which may pass within its thickness).

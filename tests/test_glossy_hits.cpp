@@ -137,14 +137,7 @@ TEST(GlossyHits, PacketsTraceAsTheScalarHiZ) {
   const ssrcl::GBuffer g = ssrcl::test::withMaterialAovs(ref.gbuffer, kScene);
   auto run = [&](const char* options) {
     const ssrcl::test::ScopedEnv env("SSRCL_KERNEL_BUILD_OPTIONS", options);
-    ssrcl::Device device = ssrcl::test::testDevice();
-    ssrcl::Pipeline pipeline(device);
-    pipeline.setGBuffer(g);
-    pipeline.setCamera(ref.camera);
-    pipeline.settings() = ssrcl::qualityPreset("medium");
-    pipeline.commit();
-    pipeline.execute();
-    return pipeline.output("reflection");
+    return ssrcl::test::traceRender(g, ref.camera);
   };
   const ssrcl::Image packets = run("-DSSRCL_TRACE_SCALAR=0"), scalar = run("-DSSRCL_TRACE_SCALAR=1");
   ASSERT_EQ(packets.data.size(), scalar.data.size());

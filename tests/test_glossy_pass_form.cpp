@@ -354,14 +354,7 @@ TEST(GlossyPassForm, MatchesCyclesOnATintedFloor) {
   const ssrcl::test::CyclesReference ref = ssrcl::test::loadCyclesReference(exr);
   const ssrcl::GBuffer g = ssrcl::test::withMaterialAovs(ref.gbuffer, exr);
 
-  ssrcl::Device device = ssrcl::test::testDevice();
-  ssrcl::Pipeline pipeline(device);
-  pipeline.setGBuffer(g);
-  pipeline.setCamera(ref.camera);
-  pipeline.settings() = ssrcl::qualityPreset("medium");
-  pipeline.commit();
-  pipeline.execute();
-  const ssrcl::Image incident = pipeline.output("reflection");
+  const ssrcl::Image incident = ssrcl::test::traceRender(g, ref.camera);
   ssrcl::Image glossy = incident;
   ssrcl::applyGlossyPassForm(glossy, g, ref.camera, std::nullopt);
   for (float bad : {-1.0f, 1.5f, std::nanf("")}) {  // -1 once meant "no constant": now a bad value

@@ -7,8 +7,10 @@
 #include <map>
 #include <stdexcept>
 
+#include "ssrcl/pipeline.hpp"
 #include "ssrcl/specular_albedo.hpp"
 #include "support/exr_fixtures.hpp"
+#include "support/test_device.hpp"
 
 namespace ssrcl::test {
 CyclesReference loadCyclesReference(const std::string& exr, const std::string& cameraJson, double specular) {
@@ -74,6 +76,17 @@ CyclesReference loadCyclesReference(const std::string& exr, const std::string& c
   }
   ref.groups.insert(ref.groups.begin(), {"all", all});
   return ref;
+}
+
+Image traceRender(const GBuffer& g, const Camera& camera, const std::string& preset) {
+  Device device = testDevice();
+  Pipeline pipeline(device);
+  pipeline.setGBuffer(g);
+  pipeline.setCamera(camera);
+  pipeline.settings() = qualityPreset(preset);
+  pipeline.commit();
+  pipeline.execute();
+  return pipeline.output("reflection");
 }
 
 GBuffer withMaterialAovs(GBuffer gbuffer, const std::string& exr) {

@@ -39,6 +39,10 @@ CyclesReference loadCyclesReference(const std::string& exr, const std::string& c
 // ssrcl::Error naming the channel where the render has none.
 GBuffer withMaterialAovs(GBuffer gbuffer, const std::string& exr);
 
+// The reflection pass (incident form) of the render's G-buffer g at a quality preset, on a device
+// of its own (it builds the programs the environment's SSRCL_KERNEL_BUILD_OPTIONS asks for).
+Image traceRender(const GBuffer& g, const Camera& camera, const std::string& preset = "medium");
+
 // Error of E * our rgb against Cycles over a group of reference pixels.
 struct ReferenceError {
   double rmse = 0, meanAbs = 0;
