@@ -350,12 +350,12 @@ TEST(TemporalBlend, SharedFrameStatisticsBlendTheSame) {
   half.camera.width = kW;  // images not of the camera's size
   EXPECT_THROW(ssrcl::temporalFrameStatistics(window({half})[0]), ssrcl::Error);
   // The statistics hold each pixel's world point and normal: a frame without its normals has none.
-  AnalyticFrame bare = makeFrame(0, 0.2);
-  std::vector<ssrcl::TemporalFrame> noNormals = window({bare});
+  std::vector<AnalyticFrame> bare{makeFrame(0, 0.2)};  // outlives the window that points into it
+  std::vector<ssrcl::TemporalFrame> noNormals = window(bare);
   noNormals[0].normal = nullptr;
   EXPECT_THROW(ssrcl::temporalFrameStatistics(noNormals[0]), ssrcl::Error);
-  bare.normal = ssrcl::Image(kW, kH / 2, 3);
-  EXPECT_THROW(ssrcl::temporalFrameStatistics(window({bare})[0]), ssrcl::Error);
+  bare[0].normal = ssrcl::Image(kW, kH / 2, 3);
+  EXPECT_THROW(ssrcl::temporalFrameStatistics(window(bare)[0]), ssrcl::Error);
 }
 
 }  // namespace
