@@ -532,8 +532,6 @@ inline float trace_ray(TraceScene* sc, float linear_step, const ScreenRay* ray, 
 #endif
 }
 
-// Traces the view-space segment p0 -> p1 (both in front of the camera) with direction dir.
-
 // The screen ray from view-space point p along unit direction dir: the segment ends at the near
 // plane for rays toward the camera, at the far plane otherwise, capped so an infinite far plane
 // still gives a finite end. False where there is nothing on screen to trace.
@@ -579,7 +577,6 @@ inline int8 ray_from_lanes(float16 proj, int2 size, float near_plane, float far_
   return (len > 0.0f) & (w0 > 0.0f) & (w1 > 0.0f) & isfinite(r->s0x) & isfinite(r->s0y) & isfinite(r->dsx) &
          isfinite(r->dsy) & (fmax(fabs(r->dsx), fabs(r->dsy)) > 0.0f);
 }
-
 
 // The direction a surface with normal n and GGX alpha reflects toward o (unit, away from it): the
 // exact mirror direction (pdf 0: a delta), or a visible-normal sample of its lobe drawn with u and
@@ -650,7 +647,8 @@ inline float4 bounce_found(__global const float4* color_pyramid, int2 size, floa
                            float t2, int2 cell2) {
   if (t2 < 0.0f) return (float4)(0.0f, 0.0f, 0.0f, -1.0f);
   cell2 = clamp(cell2, (int2)(0, 0), size - 1);
-  return (float4)(color_pyramid[cell2.y * size.x + cell2.x].xyz, edge_confidence(ray_screen(ray2, t2), size, edge_fade));
+  return (float4)(color_pyramid[cell2.y * size.x + cell2.x].xyz,
+                  edge_confidence(ray_screen(ray2, t2), size, edge_fade));
 }
 
 // A round of rays as the tracers take them: each lane's screen ray and direction, whether it has
@@ -862,9 +860,10 @@ __kernel void trace_rays(TraceParams params, __global const float* hzb, __global
       // A prefiltered hit is looked up once the batch's hits are counted (hit_prefilter.cl): recorded
       // as the screen position and the mip of its footprint.
       bool prefiltered = prefiltered_hit(sc, q, mirror ? 0.0f : alpha, params.cone_scale);
-      hit_radiance[k] = prefiltered
-                            ? (float4)(s, -1.0f - hit_mip_level(sc, proj, &ray, t, length(hit - p), alpha, params.cone_scale), 0.0f)
-                            : color_pyramid[q];
+      hit_radiance[k] =
+          prefiltered
+              ? (float4)(s, -1.0f - hit_mip_level(sc, proj, &ray, t, length(hit - p), alpha, params.cone_scale), 0.0f)
+              : color_pyramid[q];
       hit_point[k] = hit;
       hit_screen[k] = s;
       // A hit on a glossy pixel: its screen colour is what it reflects toward the camera, not toward

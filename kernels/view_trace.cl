@@ -108,7 +108,8 @@ __kernel void trace_views(ViewTraceParams params, __global const ViewCamera* vie
     Round round;
     round_clear(&round);
     for (int k = 0; k < SSRCL_TRACE_ROUND; ++k) {
-      const TraceScene sc = {size, hzb, levels, params.level_count, planes, normals, params.max_iterations, 0, 0, 0, 0, 0};
+      const TraceScene sc = {size, hzb, levels, params.level_count, planes, normals, params.max_iterations,
+                             0,    0,   0,      0,                  0};
       scene[k] = sc;
     }
     int count = 0;

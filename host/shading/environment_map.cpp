@@ -63,7 +63,8 @@ MipRow mipRow(const Image& img, double v) {
   return {&img, y0, std::min(y0 + 1, img.height - 1), y - std::floor(y)};
 }
 
-// The bilinear read at u in [-1, 2) on that row, wrapping around in azimuth.
+// The bilinear read at u in [-0.5, 1.5] on that row (a lobe sample shifted by at most half a
+// turn), wrapping around in azimuth.
 void sampleBilinear(const MipRow& row, double u, double out[3]) {
   const Image& img = *row.img;
   const double x = u * img.width - 0.5, fx = x - std::floor(x);
