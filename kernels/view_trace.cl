@@ -20,16 +20,17 @@ inline float view_score(__global const ViewCamera* views, int k, float3 p, float
   return (inside ? 2.0f : 0.0f) - dk.z / length(dk);
 }
 
-// Rank of view k among the ray's views (0 best; ties go to the lower index).
-inline int view_rank(__global const ViewCamera* views, int view_count, int k, float3 p, float3 dir) {
+// Whether view k has rank `rank` among the ray's views (0 best; ties go to the lower index): the
+// other views are scored only until more than `rank` of them are found better.
+inline bool view_has_rank(__global const ViewCamera* views, int view_count, int k, int rank, float3 p, float3 dir) {
   float own = view_score(views, k, p, dir);
-  int rank = 0;
-  for (int j = 0; j < view_count; ++j) {
+  int better = 0;
+  for (int j = 0; j < view_count && better <= rank; ++j) {
     if (j == k) continue;
     float other = view_score(views, j, p, dir);
-    rank += other > own || (other == own && j < k);
+    better += other > own || (other == own && j < k);
   }
-  return rank;
+  return better == rank;
 }
 
 // Clips the ray p + u dir, u in [0, len], to the view's frustum (Liang-Barsky on its clip-space
@@ -130,7 +131,7 @@ __kernel void trace_views(ViewTraceParams params, __global const ViewCamera* vie
                                         (int2)(i % main_size.x, i / main_size.x), main_positions[i].w, &v);
       const float3 dir = hit ? normalize(h.xyz - p) : h.xyz;
       const float main_distance = hit ? length(h.xyz - p) : INFINITY;
-      if (view_rank(views, params.view_count, params.view, p, dir) != params.rank) continue;
+      if (!view_has_rank(views, params.view_count, params.view, params.rank, p, dir)) continue;
 
       const float3 pk = mat_mul(from_main, (float4)(p, 1.0f)).xyz;
       const float3 dk = normalize(mat3_mul(from_main, dir));
