@@ -30,7 +30,8 @@
 // does with them loaded; 0: without, specular colour alone),
 // hitroughness, spp, fullrays (fullRaysRoughness: smoother pixels get proportionally fewer rays),
 // reuse, denoise, prefilter, tracer, step, seed,
-// stride, iterations, form (incident, the default: our pass times E(F0 = 1) here; glossy-pass: the
+// stride, iterations, fade (the edge fade, a fraction of the smaller side), form (incident, the
+// default: our pass times E(F0 = 1) here; glossy-pass: the
 // pass `ssrcl trace --output-form glossy-pass` writes, compared with Cycles as it is, F0 from the
 // render's base_color / metallic AOVs where it has them, else 1 as the corpus's reflectors have).
 // views (auxiliary views: the first N of <views dir>/<scene>.*.exr in name order, "all" every one;
@@ -155,6 +156,8 @@ Config parseConfig(const std::string& spec) {
       c.backDepth = value == "1";
     } else if (key == "iterations") {
       s.maxIterations = std::stoi(value);
+    } else if (key == "fade") {
+      s.edgeFade = std::stof(value);
     } else {
       throw std::runtime_error("configuration '" + spec + "': unknown key '" + key + "'");
     }
