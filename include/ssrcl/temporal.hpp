@@ -11,9 +11,10 @@
 // maxNormalDegrees, and its own hit distance matches the distance from it to the reflected point;
 // and refused when the frame's hit, seen from the neighbour, is in front of what the neighbour
 // shows there (the object has moved), where the frame itself shows the hit (a hit on no surface,
-// or off the screen, stands in front of what the frame shows as well). Weights fall with the hit-distance mismatch. Both tests
-// widen with roughness: a rough lobe's hit distance is a mean over hits spread across the lobe,
-// which moves with the view, and its hit (taken along the lobe's centre) need not lie on a surface.
+// or off the screen, stands in front of what the frame shows as well). Weights fall with the
+// hit-distance mismatch. Both tests widen with roughness: a rough lobe's hit distance is a mean
+// over hits spread across the lobe, which moves with the view, and its hit (taken along the
+// lobe's centre) need not lie on a surface.
 // Geometry cannot see a light that changes over the window: a tap is also refused where the
 // neighbour's radiance around it (the mean of a 5x5 neighbourhood) differs from the frame's own
 // around the pixel by more than noise and a ratio allow. The noise is the smaller of the two
@@ -79,8 +80,8 @@ void validateTemporalSettings(const TemporalSettings& settings);
 std::shared_ptr<const TemporalFrameStatistics> temporalFrameStatistics(const TemporalFrame& frame);
 
 // The reflection of frames[centre] blended with the other frames: per pixel with a hit, the
-// weighted mean of its own pass (weight 1) and every neighbour's accepted pixels (bilinear weight times the
-// distance-mismatch weight). Same inputs, same output, whatever the thread count and whether the
+// weighted mean of its own pass (weight 1) and every neighbour's accepted pixels (bilinear weight
+// times the distance-mismatch weight). Same inputs, same output, whatever the thread count and whether the
 // frames' statistics were given. Throws Error(InvalidArgument) for frames of different sizes or
 // missing images, or statistics of another size.
 Image temporalBlend(const std::vector<TemporalFrame>& frames, size_t centre, const TemporalSettings& settings);
