@@ -37,12 +37,6 @@ typedef struct {
   float4 q0, dq;  // xyz = Q, w = k
 } ScreenRay;
 
-// The ray of a lane that has none: traced with the others, its results unused.
-inline ScreenRay no_ray(void) {
-  const ScreenRay none = {(float2)(0.0f), (float2)(0.0f), (float4)(0.0f), (float4)(0.0f)};
-  return none;
-}
-
 inline float4 ray_q(const ScreenRay* r, float t) { return r->q0 + t * r->dq; }
 inline float ray_depth(const ScreenRay* r, float t) { float4 q = ray_q(r, t); return -q.z / q.w; }
 inline float3 ray_point(const ScreenRay* r, float t) { float4 q = ray_q(r, t); return q.xyz / q.w; }
@@ -663,12 +657,20 @@ typedef struct {
 } Round;
 
 inline void round_clear(Round* r) {
+  const ScreenRay none = {(float2)(0.0f), (float2)(0.0f), (float4)(0.0f), (float4)(0.0f)};
   for (int k = 0; k < SSRCL_TRACE_ROUND; ++k) {
-    r->ray[k] = no_ray();
+    r->ray[k] = none;
     r->dir[k] = (float3)(0.0f);
     r->live[k] = 0;
     r->t[k] = -1.0f;
   }
+}
+
+// A new round: every lane to trace in `frame` from its start (the packets read the frame from
+// lane 0's; each lane counts its own steps), none with a ray yet.
+inline void round_begin(Round* r, TraceScene* scene, const TraceScene* frame) {
+  for (int k = 0; k < SSRCL_TRACE_ROUND; ++k) scene[k] = *frame;
+  round_clear(r);
 }
 
 // Traces a round's live rays, lane k in frame sc[k] (its steps counted on from there): Hi-Z in
@@ -725,19 +727,16 @@ __kernel void trace_rays(TraceParams params, __global const float* hzb, __global
   // The rays of SSRCL_TRACE_PIXELS listed pixels per work-item, in rounds of up to SSRCL_TRACE_ROUND:
   // made one by one (skipping the slots a pixel has no ray in, so lanes stay full where pixels have
   // one ray, as mirror pixels do), traced together in lanes (Hi-Z), then shaded one by one.
+  const TraceScene frame_scene = {size,  hzb,  levels, level_count, planes, normals, params.max_iterations, 0, 0, 0,
+                                   0,     0,    range,  guess,       0,      -1.0f,   (int2)(0)};
   int next;
   const int end = work_item_rays(params.listed, batch_size, &next);
   while (next < end) {
     PixelRay lane[SSRCL_TRACE_ROUND];
     TraceScene scene[SSRCL_TRACE_ROUND];
     Round first;
-    round_clear(&first);
-    for (int k = 0; k < SSRCL_TRACE_ROUND; ++k) {
-      const TraceScene sc = {size, hzb, levels, level_count, planes, normals, params.max_iterations, 0, 0, 0, 0, 0,
-                             range, guess, 0, -1.0f, (int2)(0)};
-      scene[k] = sc;  // every lane's: the packets read the frame from scene[0]
-      lane[k].traced = 0;
-    }
+    round_begin(&first, scene, &frame_scene);
+    for (int k = 0; k < SSRCL_TRACE_ROUND; ++k) lane[k].traced = 0;
     // The round's rays up to their directions, one by one; their directions eight at a time
     // (sample_reflection_lanes); then their screen rays, one by one. A ray whose sample points
     // below its surface leaves its lane to the next.

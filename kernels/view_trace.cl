@@ -101,18 +101,15 @@ __kernel void trace_views(ViewTraceParams params, __global const ViewCamera* vie
   const int2 size = (int2)(cam.width, cam.height);
   // The rays of SSRCL_TRACE_PIXELS listed pixels per work-item, in rounds of the ones that go on
   // in this view, traced together (trace.cl trace_round) and then taken or left one by one.
+  const TraceScene view_scene = {size, hzb, levels, params.level_count, planes, normals, params.max_iterations, 0, 0,
+                                  0,    0,   0};
   int next;
   const int end = work_item_rays(params.listed, batch_size, &next);
   while (next < end) {
     ViewRay lane[SSRCL_TRACE_ROUND];
     TraceScene scene[SSRCL_TRACE_ROUND];
     Round round;
-    round_clear(&round);
-    for (int k = 0; k < SSRCL_TRACE_ROUND; ++k) {
-      const TraceScene sc = {size, hzb, levels, params.level_count, planes, normals, params.max_iterations,
-                             0,    0,   0,      0,                  0};
-      scene[k] = sc;
-    }
+    round_begin(&round, scene, &view_scene);
     int count = 0;
     while (count < SSRCL_TRACE_ROUND && next < end) {
       const int gid = next++;
