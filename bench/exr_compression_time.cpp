@@ -45,7 +45,8 @@ void readInto(const char* path, Planes& planes) {
   const Imath::Box2i& w = in.header().dataWindow();
   const size_t width = size_t(w.max.x - w.min.x + 1), height = size_t(w.max.y - w.min.y + 1);
   if (planes.names.empty())
-    for (auto c = in.header().channels().begin(); c != in.header().channels().end(); ++c) planes.names.push_back(c.name());
+    for (auto c = in.header().channels().begin(); c != in.header().channels().end(); ++c)
+      planes.names.push_back(c.name());
   planes.data.assign(planes.names.size(), std::vector<float>(width * height));
   planes.buffer = Imf::FrameBuffer();
   for (size_t k = 0; k < planes.names.size(); ++k)

@@ -97,7 +97,8 @@ void addSettingsOptions(CLI::App& cmd, SettingsOptions& o) {
                  "Constant surface thickness relative to depth (e.g. 0.005); implies --thickness-model constant")
       ->group(m)
       ->excludes(model);
-  cmd.add_option("--edge-fade", o.edgeFade, "Fraction of the screen over which A fades at its edges (default 0: no fade)")
+  cmd.add_option("--edge-fade", o.edgeFade,
+                 "Fraction of the screen over which A fades at its edges (default 0: no fade)")
       ->group(m);
 
   const char* e = "Environment";

@@ -15,7 +15,8 @@ struct ReflectionExrOptions {
   // Channel prefix: "" writes R,G,B,A,distance; "refl" writes refl.R, ..., refl.distance.
   std::string layer;
   bool half = false;  // half-float pass channels (appended input channels keep their own type)
-  // One of exrCompressionNames(); empty: defaultExrCompression(), or, when appending, the appended file's.
+  // One of exrCompressionNames(); empty: defaultExrCompression(), or, when appending, the
+  // appended file's.
   std::string compression;
   // Non-empty: the output is a copy of this single-part EXR (every channel with its type, every
   // attribute) with the pass's channels added; its data window must be the images'.

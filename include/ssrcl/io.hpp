@@ -201,8 +201,8 @@ Camera loadCameraJson(const std::string& path);
 void saveCameraJson(const std::string& path, const Camera& camera);
 
 // Writes the reflection pass (R,G,B,A from rgba, plus "distance") as float EXR with RLE
-// compression (defaultExrCompression()), through a temporary file in the same directory renamed over `path`, so a failure
-// leaves any existing file untouched. Throws Error(IoError).
+// compression (defaultExrCompression()), through a temporary file in the same directory renamed
+// over `path`, so a failure leaves any existing file untouched. Throws Error(IoError).
 // `windows` (data, display) are written as given, so an overscan or crop render's pass lines up
 // with it; the data window must be the images' size. Default: both 0,0 - width-1,height-1.
 struct ExrWindows {
