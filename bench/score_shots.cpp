@@ -67,6 +67,10 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--shot", shotList, "Only these shots (comma-separated)");
   app.add_option("--json", jsonPath, "Write every figure as JSON");
+  std::string dumpDir;
+  app.add_option("--dump", dumpDir,
+                 "Write <dump>/<config>.<frame stem>.ppm of every frame after the first: the pass, Cycles, the temporal "
+                 "error, the references' change and the pass's");
   bool breakdown = false;
   app.add_flag("--breakdown", breakdown, "Print where each configuration's temporal error lies");
   CLI11_PARSE(app, argc, argv);
@@ -138,6 +142,10 @@ int main(int argc, char** argv) {
           const double psnr = ssrcl::test::referenceError(refs[t], passes[t], refs[t].groups.front().second).psnr;
           score.psnr += psnr / double(frames.size());
           nlohmann::json frame = {{"frame", fs::path(frames[t]).filename().string()}, {"psnr_db", psnr}};
+          if (t > 0 && !dumpDir.empty())
+            ssrcl::bench::writeTemporalPanels(
+                dumpDir + "/" + configs[c] + "." + fs::path(frames[t]).stem().string() + ".ppm", refs[t - 1],
+                passes[t - 1], refs[t], passes[t]);
           if (t > 0) {
             const ssrcl::test::TemporalError te =
                 ssrcl::test::temporalError(refs[t - 1], passes[t - 1], refs[t], passes[t]);

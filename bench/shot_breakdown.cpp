@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <iomanip>
 
 #include "support/exr_fixtures.hpp"
@@ -102,6 +103,43 @@ void printBreakdown(std::ostream& out, const std::string& label, const std::vect
         << "%" << std::setw(8) << db(p.se, p.pixels) << std::setw(8) << db(p.seReference, p.pixels) << std::setw(8)
         << db(p.sePass, p.pixels) << "\n";
   }
+}
+
+void writeTemporalPanels(const std::string& path, const test::CyclesReference& prevRef, const Image& prevPass,
+                         const test::CyclesReference& ref, const Image& pass) {
+  std::vector<double> se, seReference, sePass;
+  test::temporalError(prevRef, prevPass, ref, pass, &se);
+  const Image zeros(pass.width, pass.height, pass.channels);
+  test::temporalError(prevRef, zeros, ref, zeros, &seReference);
+  test::CyclesReference blankPrev = prevRef, blank = ref;
+  std::fill(blankPrev.cycles.begin(), blankPrev.cycles.end(), 0.0);
+  std::fill(blank.cycles.begin(), blank.cycles.end(), 0.0);
+  test::temporalError(blankPrev, prevPass, blank, pass, &sePass);
+  const int w = pass.width, h = pass.height;
+  constexpr int kPanels = 5;
+  std::vector<unsigned char> rgb(size_t(kPanels * w) * h * 3, 0);
+  const auto put = [&](int panel, size_t i, int c, double v) {
+    const double g = std::pow(std::clamp(v / ref.peak, 0.0, 1.0), 1 / 2.2);
+    rgb[((i / size_t(w)) * kPanels * w + size_t(panel * w) + i % size_t(w)) * 3 + size_t(c)] =
+        static_cast<unsigned char>(255 * g + 0.5);
+  };
+  for (size_t k = 0; k < ref.pixels.size(); ++k)
+    for (int c = 0; c < 3; ++c) {
+      put(0, size_t(ref.pixels[k]), c, pass.data[size_t(pass.channels) * size_t(ref.pixels[k]) + size_t(c)]);
+      put(1, size_t(ref.pixels[k]), c, ref.cycles[3 * k + size_t(c)]);
+    }
+  for (size_t i = 0; i < se.size(); ++i) {
+    if (std::isnan(se[i])) continue;
+    for (int c = 0; c < 3; ++c) {
+      put(2, i, c, std::sqrt(se[i] / 3));
+      put(3, i, c, std::sqrt(seReference[i] / 3));
+      put(4, i, c, std::sqrt(sePass[i] / 3));
+    }
+  }
+  std::ofstream f(path, std::ios::binary);
+  f << "P6\n" << kPanels * w << " " << h << "\n255\n";
+  f.write(reinterpret_cast<const char*>(rgb.data()), std::streamsize(rgb.size()));
+  if (!f) throw std::runtime_error(path + ": cannot write");
 }
 
 }  // namespace ssrcl::bench

@@ -28,4 +28,10 @@ void printBreakdown(std::ostream& out, const std::string& label, const std::vect
                     const std::vector<Image>& passes, const std::vector<std::vector<uint8_t>>& classes,
                     const std::vector<Image>* alone);
 
+// Frame t of a shot as a binary PPM of five panels, each divided by the reference's peak (gamma
+// 2.2): the pass, the reference, and per pixel the temporal error, the references' own change and
+// the pass's own change from frame t-1 (the three RMS over the channels; black where left out).
+void writeTemporalPanels(const std::string& path, const test::CyclesReference& prevRef, const Image& prevPass,
+                         const test::CyclesReference& ref, const Image& pass);
+
 }  // namespace ssrcl::bench

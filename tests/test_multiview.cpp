@@ -455,6 +455,60 @@ TEST(Neighbours, AMovedObjectIsNotTakenFromANeighbour) {
   EXPECT_EQ(unchanged, pixels);  // measured: all 3,190
 }
 
+// `--neighbour-reach`: neighbours far apart in the shot show what lies past the frame's edges,
+// where adjacent frames add little. A camera dollying back over five frames: the first frame's
+// neighbours reaching 4 frames out are the last two (its shot has no frame before it), whose wider
+// views see more of what its rays leave the screen for than frames 2 and 3 do; the batch frame is
+// `ssrcl trace` with those two as --neighbour, bit for bit.
+TEST(Neighbours, FartherNeighboursShowMoreOfWhatLiesOffScreen) {
+  TempDir dir{"ssrcl-neighbour-reach"};
+  AnalyticSequence sequence;
+  sequence.directory = dir.path().string();
+  sequence.frameCount = 5;
+  sequence.width = 240;
+  sequence.height = 135;
+  sequence.fovYDegrees = 30.0;
+  sequence.degreesPerFrame = 0.0;
+  sequence.dollyPerFrame = 1.0;
+  const std::string pattern = writeAnalyticSequence(sequence);
+  const auto frame = [&](int k) { return dir.file("shot.100" + std::to_string(k + 1) + ".exr"); };
+  const auto batch = [&](const std::string& out, int reach) {
+    const auto r = runCommand(shellQuote(SSRCL_CLI) + " batch " + shellQuote(pattern) + " -o " +
+                              shellQuote(dir.file(out) + "/") + " --temporal 0 --neighbours 1 --neighbour-reach " +
+                              std::to_string(reach));
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    return readPass(dir.file(out + "/shot.1001.refl.exr"));
+  };
+  const Pass adjacent = batch("adjacent", 1), far = batch("far", 4);
+  const Scene scene = sequenceScene(sequence);
+  const ssrcl::Camera camera = sequenceCamera(sequence, 0);
+  const AnalyticGBuffer g = renderGBuffer(scene, camera);
+  View last;
+  last.camera = sequenceCamera(sequence, 4);
+  last.g = renderGBuffer(scene, last.camera);
+  const MirrorTruth truth = exactMirrorReflection(scene, camera, g);
+  const Score near = score(g, truth, ReflectionClass::OffScreen, last, adjacent),
+              wide = score(g, truth, ReflectionClass::OffScreen, last, far);
+  std::cout << "off-screen hits the last frame sees: " << near.pixels << "; exact with frames 2-3 "
+            << near.fraction(near.exact) << ", with frames 4-5 " << wide.fraction(wide.exact) << "\n";
+  ASSERT_GT(near.pixels, 250u);
+  // Measured 314 pixels: 81.8% exact with frames 2-3, 95.9% with frames 4-5.
+  EXPECT_GE(wide.fraction(wide.exact), 0.93);
+  EXPECT_GE(wide.fraction(wide.exact), near.fraction(near.exact) + 0.1);
+
+  const std::string traced = dir.file("traced.exr");
+  const auto r = runCommand(shellQuote(SSRCL_CLI) + " trace " + shellQuote(frame(0)) + " -o " + shellQuote(traced) +
+                            " --neighbour " + shellQuote(frame(3)) + " --neighbour " + shellQuote(frame(4)));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const ExrContents fromBatch = readExr(dir.file("far/shot.1001.refl.exr")), single = readExr(traced);
+  for (const char* channel : {"R", "G", "B", "A", "distance", "view", "view_share"})
+    EXPECT_EQ(fromBatch.channels.at(channel).values, single.channels.at(channel).values) << channel;
+  const auto bad = runCommand(shellQuote(SSRCL_CLI) + " batch " + shellQuote(pattern) + " -o " +
+                              shellQuote(dir.file("bad") + "/") + " --neighbours 2 --neighbour-reach 1");
+  EXPECT_EQ(bad.exitCode, 2) << bad.output;
+  EXPECT_NE(bad.output.find("--neighbour-reach 1: must be at least --neighbours (2)"), std::string::npos) << bad.output;
+}
+
 // Views are inputs: resuming the batch with other neighbours refuses the outputs made with these;
 // the same neighbours skip them.
 TEST(Neighbours, ResumingComparesTheViews) {

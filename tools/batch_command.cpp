@@ -26,7 +26,8 @@ struct BatchOptions {
   std::string device, shard = "0/1", report;
   GBufferInputOptions in;
   std::vector<std::string> views, viewCameras;  // static views, shared by every frame
-  int neighbours = 0;                           // frames f-K..f+K as views of frame f
+  int neighbours = 0;                           // K frames each side of frame f as its views
+  int neighbourReach = 12;                      // ... the farthest this many frames away
   int temporal = 3;                             // passes of frames f-K..f+K blended into frame f's
   SettingsOptions settings;
   OutputOptions out;
@@ -66,7 +67,8 @@ int runBatch(BatchOptions& o) {
     if (shard.owns(i, all.size())) jobs.push_back(all[i]);
   std::unique_ptr<NeighbourWindow> neighbours;
   if (o.neighbours != 0)
-    neighbours = std::make_unique<NeighbourWindow>(o.in, all, o.neighbours, static_cast<int>(o.views.size()));
+    neighbours = std::make_unique<NeighbourWindow>(o.in, all, o.neighbours, o.neighbourReach,
+                                                   static_cast<int>(o.views.size()));
   std::unique_ptr<TemporalWindow> temporal;
   if (o.temporal != 0) temporal = std::make_unique<TemporalWindow>(all, o.temporal, o.settings.resolve().seed);
   std::vector<FrameOutcome> outcomes(jobs.size());
@@ -171,9 +173,13 @@ Action addBatchCommand(CLI::App& app) {
                  "Auxiliary view shared by every frame: a G-buffer EXR of the same (static) scene from another "
                  "camera (repeatable), read and uploaded once; as `ssrcl trace --view`");
   cmd->add_option("--neighbours", o->neighbours,
-                  "K: frames f-K..f+K of the sequence (2K frames nearest f at its ends) are views of frame f, "
-                  "each with its own camera, for static geometry: hits frame f shows have moved are not taken; "
-                  "each frame is read and prepared once while in the window")
+                  "K: K frames on each side of frame f, spread out to --neighbour-reach (all 2K on one side at "
+                  "the sequence's ends), are views of frame f, each with its own camera, for static geometry: they "
+                  "show what lies past its edges; hits frame f shows have moved are not taken")
+      ->capture_default_str();
+  cmd->add_option("--neighbour-reach", o->neighbourReach,
+                  "R: frame f's farthest neighbours are f-R and f+R, the others spread between (R = K: the "
+                  "adjacent frames)")
       ->capture_default_str();
   cmd->add_option("--temporal", o->temporal,
                   "K: each frame's pass is blended with those of frames f-K..f+K, each traced with its own seed and "

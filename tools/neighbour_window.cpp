@@ -1,6 +1,7 @@
 #include "neighbour_window.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "ssrcl/error.hpp"
 
@@ -12,8 +13,9 @@ FrameSource frameSource(const GBufferInputOptions& input, const FrameJob& job) {
   return s;
 }
 
-NeighbourWindow::NeighbourWindow(const GBufferInputOptions& input, std::vector<FrameJob> sequence, int k, int firstView)
-    : input_(viewInputOptions(input)), sequence_(std::move(sequence)), k_(k), firstView_(firstView) {
+NeighbourWindow::NeighbourWindow(const GBufferInputOptions& input, std::vector<FrameJob> sequence, int k, int reach,
+                                 int firstView)
+    : input_(viewInputOptions(input)), sequence_(std::move(sequence)), k_(k), reach_(reach), firstView_(firstView) {
   if (k < 0) throw Error(ErrorCode::InvalidArgument, "--neighbours " + std::to_string(k) + ": must be 0 or more");
   // The view count first, in 64 bits: 2K + 1 overflows int for a huge K.
   if (firstView + 2LL * k > Pipeline::kMaxViews)
@@ -24,14 +26,33 @@ NeighbourWindow::NeighbourWindow(const GBufferInputOptions& input, std::vector<F
     throw Error(ErrorCode::InvalidArgument, "--neighbours " + std::to_string(k) + " needs at least " +
                                                 std::to_string(2 * k + 1) + " frames in the sequence, it has " +
                                                 std::to_string(sequence_.size()));
+  if (reach < k)
+    throw Error(ErrorCode::InvalidArgument, "--neighbour-reach " + std::to_string(reach) + ": must be at least " +
+                                                "--neighbours (" + std::to_string(k) + ")");
   for (size_t i = 0; i < sequence_.size(); ++i) byInput_[sequence_[i].input] = i;
   slots_.resize(size_t(2 * k));
 }
 
-std::pair<size_t, size_t> NeighbourWindow::span(size_t index, size_t count, int k) {
-  const size_t width = size_t(2 * k);
-  const size_t first = std::min(index > size_t(k) ? index - size_t(k) : 0, count - 1 - width);
-  return {first, first + width};
+std::vector<size_t> NeighbourWindow::members(size_t index, size_t count, int k, int reach) {
+  std::vector<size_t> out;
+  // The unused frame nearest `at` (clamped into the shot), the earlier one of two as near.
+  const auto add = [&](long at) {
+    at = std::clamp(at, 0L, long(count) - 1);
+    for (long d = 0; d < long(count); ++d)
+      for (const long c : {at - d, at + d})
+        if (c >= 0 && c < long(count) && size_t(c) != index && std::find(out.begin(), out.end(), size_t(c)) == out.end()) {
+          out.push_back(size_t(c));
+          return;
+        }
+  };
+  for (int j = 1; j <= k; ++j) {
+    const long d = std::max(long(j), std::lround(double(reach) * j / k)), i = long(index);
+    // A side the shot has no frame at goes to the other side, as far out.
+    add(i - d >= 0 ? i - d : i + d);
+    add(i + d < long(count) ? i + d : i - d);
+  }
+  std::sort(out.begin(), out.end());
+  return out;
 }
 
 size_t NeighbourWindow::indexOf(const std::string& input) const {
@@ -42,15 +63,19 @@ size_t NeighbourWindow::indexOf(const std::string& input) const {
 
 void NeighbourWindow::moveTo(Pipeline& pipeline, const std::string& input) {
   const size_t index = indexOf(input);
-  const std::pair<size_t, size_t> window = span(index, sequence_.size(), k_);
-  const size_t first = window.first, last = window.second;
-  const auto wanted = [&](size_t j) { return j >= first && j <= last && j != index; };
+  const std::vector<size_t> window = members(index, sequence_.size(), k_, reach_);
+  const auto wanted = [&](size_t j) { return std::find(window.begin(), window.end(), j) != window.end(); };
   for (auto& slot : slots_)
     if (slot && !wanted(*slot)) slot.reset();
+  // Frames kept are this window's and the next frame's (frames go in order): the others are read
+  // again when a later window wants them, so memory stays within 4K G-buffers however far the reach.
+  const size_t following = index + 1 < sequence_.size() ? index + 1 : index;
+  const std::vector<size_t> next = members(following, sequence_.size(), k_, reach_);
   for (auto it = loaded_.begin(); it != loaded_.end();)
-    it = it->first >= first && it->first <= last ? std::next(it) : loaded_.erase(it);
-  for (size_t j = first; j <= last; ++j) {
-    if (!wanted(j) || std::find(slots_.begin(), slots_.end(), j) != slots_.end()) continue;
+    it = wanted(it->first) || std::find(next.begin(), next.end(), it->first) != next.end() ? std::next(it)
+                                                                                           : loaded_.erase(it);
+  for (size_t j : window) {
+    if (std::find(slots_.begin(), slots_.end(), j) != slots_.end()) continue;
     const FrameJob& job = sequence_[j];
     std::shared_ptr<const Frame>& frame = loaded_[j];
     if (!frame) try {
@@ -67,15 +92,17 @@ void NeighbourWindow::moveTo(Pipeline& pipeline, const std::string& input) {
 }
 
 void NeighbourWindow::keep(const std::string& input, Frame&& frame) {
-  loaded_[indexOf(input)] = std::make_shared<const Frame>(std::move(frame));
+  const size_t index = indexOf(input);
+  const size_t next = index + 1 < sequence_.size() ? index + 1 : index;
+  const std::vector<size_t> wanted = members(next, sequence_.size(), k_, reach_);
+  if (std::find(wanted.begin(), wanted.end(), index) != wanted.end())
+    loaded_[index] = std::make_shared<const Frame>(std::move(frame));
 }
 
 std::vector<std::string> NeighbourWindow::filesOf(const std::string& input) const {
   const size_t index = indexOf(input);
-  const auto [first, last] = span(index, sequence_.size(), k_);
   std::vector<std::string> out;
-  for (size_t j = first; j <= last; ++j)
-    if (j != index) out.push_back(sequence_[j].input);
+  for (size_t j : members(index, sequence_.size(), k_, reach_)) out.push_back(sequence_[j].input);
   return out;
 }
 

@@ -1,8 +1,10 @@
 #pragma once
-// `ssrcl batch --neighbours K`: the frames around each frame of a sequence as its auxiliary views
-// (ViewTime::Other: static geometry only), kept as a sliding window. Moving from one frame to the
-// next replaces only the views that left the window, so each frame is read, uploaded and prepared
-// (setup, thickness, HZB, colours) once while it stays inside it.
+// `ssrcl batch --neighbours K`: frames of the shot around each frame as its auxiliary views
+// (ViewTime::Other: static geometry only), K on each side reaching `--neighbour-reach` frames out.
+// Frames far apart show what the frame does not (what lies past its edges as the camera moves),
+// where adjacent ones add little. Moving from one frame to the next replaces only the views that
+// left its window; each frame is read, uploaded and prepared (setup, thickness, HZB, colours) once
+// while it stays in a window, and read again where a later window wants it back.
 #include <map>
 #include <memory>
 #include <optional>
@@ -23,13 +25,15 @@ class NeighbourWindow {
  public:
   // `sequence`: every frame the batch planned, in order (all shards, frames skipped or not).
   // Neighbours take the pipeline's views from `firstView` on (after the static --view ones).
-  // Throws Error(InvalidArgument) when K < 0, when the sequence has fewer than 2K + 1 frames, or
-  // when firstView + 2K views exceed the pipeline's maximum.
-  NeighbourWindow(const GBufferInputOptions& input, std::vector<FrameJob> sequence, int k, int firstView);
+  // `reach`: how far (in frames) the farthest neighbour on each side is. Throws
+  // Error(InvalidArgument) when K < 0, reach < K, the sequence has fewer than 2K + 1 frames, or
+  // firstView + 2K views exceed the pipeline's maximum.
+  NeighbourWindow(const GBufferInputOptions& input, std::vector<FrameJob> sequence, int k, int reach, int firstView);
 
-  // The first and last sequence index of frame `index`'s window: index - K .. index + K, shifted
-  // inward at the sequence's ends so that every frame has 2K neighbours.
-  static std::pair<size_t, size_t> span(size_t index, size_t count, int k);
+  // The sequence indices of frame `index`'s 2K neighbours, in order: for j = 1..K the frames
+  // round(reach j / K) before and after it (at least j); where the shot has none on one side, as
+  // far out on the other; a frame taken already gives way to the nearest free one.
+  static std::vector<size_t> members(size_t index, size_t count, int k, int reach);
 
   // Makes the pipeline's neighbour views those of the frame read from `input`: frames that left
   // the window give their view to frames that entered it (read with the frames' channel options
@@ -49,7 +53,7 @@ class NeighbourWindow {
   GBufferInputOptions input_;  // as views are read
   std::vector<FrameJob> sequence_;
   std::map<std::string, size_t> byInput_;
-  int k_, firstView_;
+  int k_, reach_, firstView_;
   std::map<size_t, std::shared_ptr<const Frame>> loaded_;  // frames of the current window
   std::vector<std::optional<size_t>> slots_;               // the sequence frame each view shows
 };
