@@ -519,7 +519,7 @@ TEST(Neighbours, ResumingComparesTheViews) {
   const auto same = runCommand(batch + " --neighbours 1");
   EXPECT_EQ(same.exitCode, 0) << same.output;
   EXPECT_NE(same.output.find("3 skipped"), std::string::npos) << same.output;
-  const auto none = runCommand(batch);
+  const auto none = runCommand(batch + " --neighbours 0");
   EXPECT_EQ(none.exitCode, 2) << none.output;
   EXPECT_NE(none.output.find("shot.1001.refl.exr: exists with views '"), std::string::npos) << none.output;
   EXPECT_NE(none.output.find("but none is asked now; give --overwrite"), std::string::npos) << none.output;

@@ -135,7 +135,8 @@ TEST(ShotTemporal, TheDefaultBlendsAndShardsEqualTheWholeRun) {
 }
 
 // A shard reads the frames of its windows it does not own; one that cannot be read fails the
-// frames whose window holds it, naming it, and no other.
+// frames whose window holds it, naming it, and no other (neighbours as views, which reach farther,
+// fail the frames they are views of the same way: test_multiview).
 TEST(ShotTemporal, AnUnreadableWindowFrameFailsOnlyTheFramesItBlendsInto) {
   ssrcl::test::TempDir dir("ssrcl-shot-unreadable");
   const std::string shot = dir.file("shot") + "/";
@@ -143,12 +144,12 @@ TEST(ShotTemporal, AnUnreadableWindowFrameFailsOnlyTheFramesItBlendsInto) {
   for (int f = 1; f <= kFrames; ++f)
     for (const char* ext : {".exr", ".camera.json"}) fs::copy_file(kShot + stem(f) + ext, shot + stem(f) + ext);
   fs::resize_file(shot + stem(3) + ".exr", 100);  // a truncated render
-  const auto middle = runCommand(batch(dir.file("out"), "--temporal 1 --shard 1/3", shot));
+  const auto middle = runCommand(batch(dir.file("out"), "--temporal 1 --neighbours 0 --shard 1/3", shot));
   EXPECT_EQ(middle.exitCode, 2) << middle.output;
   EXPECT_NE(middle.output.find("temporal neighbour " + shot + stem(3) + ".exr"), std::string::npos)
       << middle.output;
   EXPECT_FALSE(fs::exists(dir.file("out") + "/" + stem(2) + ".refl.exr"));
-  const auto first = runCommand(batch(dir.file("out"), "--temporal 1 --shard 0/3", shot));
+  const auto first = runCommand(batch(dir.file("out"), "--temporal 1 --neighbours 0 --shard 0/3", shot));
   EXPECT_EQ(first.exitCode, 0) << first.output;
   EXPECT_TRUE(fs::exists(dir.file("out") + "/" + stem(1) + ".refl.exr"));
 }

@@ -26,7 +26,8 @@ struct BatchOptions {
   std::string device, shard = "0/1", report;
   GBufferInputOptions in;
   std::vector<std::string> views, viewCameras;  // static views, shared by every frame
-  int neighbours = 0;                           // K frames each side of frame f as its views
+  int neighbours = 1;                           // K frames each side of frame f as its views
+  bool neighboursGiven = false;                 // else the default: see defaultNeighbours
   int neighbourReach = 12;                      // ... the farthest this many frames away
   int temporal = 3;                             // passes of frames f-K..f+K blended into frame f's
   SettingsOptions settings;
@@ -58,6 +59,15 @@ void settleBatchOutputForm(BatchOptions& o, const std::vector<FrameJob>& all) {
   else if (o.in.form.form.empty()) o.in.form.form = outputFormName(OutputForm::Incident);  // each frame fails to read
 }
 
+// Without --neighbours: K = 1 where frames are blended (--temporal above 0), as many as the
+// sequence and the view limit allow; none with --temporal 0 (each frame alone, as `ssrcl trace`).
+int defaultNeighbours(const BatchOptions& o, size_t frames) {
+  if (o.neighboursGiven) return o.neighbours;
+  if (o.temporal == 0) return 0;
+  const long fit = std::min((long(frames) - 1) / 2, (long(Pipeline::kMaxViews) - long(o.views.size())) / 2);
+  return int(std::clamp(fit, 0L, long(o.neighbours)));
+}
+
 int runBatch(BatchOptions& o) {
   const Shard shard = parseShard(o.shard);
   std::vector<FrameJob> jobs;
@@ -66,8 +76,8 @@ int runBatch(BatchOptions& o) {
   for (size_t i = 0; i < all.size(); ++i)
     if (shard.owns(i, all.size())) jobs.push_back(all[i]);
   std::unique_ptr<NeighbourWindow> neighbours;
-  if (o.neighbours != 0)
-    neighbours = std::make_unique<NeighbourWindow>(o.in, all, o.neighbours, o.neighbourReach,
+  if (const int k = defaultNeighbours(o, all.size()); k != 0)
+    neighbours = std::make_unique<NeighbourWindow>(o.in, all, k, o.neighbourReach,
                                                    static_cast<int>(o.views.size()));
   std::unique_ptr<TemporalWindow> temporal;
   if (o.temporal != 0) temporal = std::make_unique<TemporalWindow>(all, o.temporal, o.settings.resolve().seed);
@@ -172,11 +182,16 @@ Action addBatchCommand(CLI::App& app) {
   addViewOptions(*cmd, o->views, o->viewCameras,
                  "Auxiliary view shared by every frame: a G-buffer EXR of the same (static) scene from another "
                  "camera (repeatable), read and uploaded once; as `ssrcl trace --view`");
-  cmd->add_option("--neighbours", o->neighbours,
-                  "K: K frames on each side of frame f, spread out to --neighbour-reach (all 2K on one side at "
-                  "the sequence's ends), are views of frame f, each with its own camera, for static geometry: they "
-                  "show what lies past its edges; hits frame f shows have moved are not taken")
-      ->capture_default_str();
+  cmd->add_option_function<int>(
+         "--neighbours",
+         [o](const int& k) {
+           o->neighbours = k;
+           o->neighboursGiven = true;
+         },
+         "K: K frames on each side of frame f, spread out to --neighbour-reach (all 2K on one side at the "
+         "sequence's ends), are views of frame f, each with its own camera, for static geometry: they show what "
+         "lies past its edges; hits frame f shows have moved are not taken. Default: 1 with --temporal (fewer "
+         "where the sequence or the view limit allows none), 0 with --temporal 0");
   cmd->add_option("--neighbour-reach", o->neighbourReach,
                   "R: frame f's farthest neighbours are f-R and f+R, the others spread between (R = K: the "
                   "adjacent frames)")

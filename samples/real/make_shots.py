@@ -66,6 +66,14 @@ def pan(scene, frame, step_deg=0.5):
     cam.matrix_world = Matrix.Translation(loc) @ turn @ Matrix.Translation(-loc) @ start
 
 
+def dolly(scene, frame, step=0.06):
+    """Camera moves forward (its view direction, level) `step` m a frame, centred on the scene's."""
+    cam = scene.camera
+    forward = cam.matrix_world.to_quaternion() @ Vector((0.0, 0.0, -1.0))
+    forward = Vector((forward.x, forward.y, 0.0)).normalized()
+    cam.location = START[cam.name].to_translation() + forward * (step * (frame - (FRAMES + 1) / 2))
+
+
 def slide(scene, frame, step=0.012):
     """The glossy props (pass_index 2: the tea set) slide along x, `step` m a frame."""
     for o in scene.objects:
@@ -77,6 +85,12 @@ SHOTS = [
     dict(name="living_truck", scene="living_room", move=truck, kind="interior, camera truck"),
     dict(name="deck_pan", scene="wet_deck", move=pan, kind="exterior HDRI, camera pan"),
     dict(name="tea_slide", scene="tea_table", move=slide, kind="moving object, camera still"),
+    # Held out: chosen after the defaults, to check them on moves and speeds they were not set on.
+    dict(name="lobby_truck", scene="concrete_lobby", move=lambda s, f: truck(s, f, 0.10),
+         kind="interior, fast camera truck (held out)"),
+    dict(name="riverbed_dolly", scene="wet_riverbed", move=dolly, kind="exterior HDRI, camera dolly (held out)"),
+    dict(name="workshop_pan", scene="metal_workshop", move=lambda s, f: pan(s, f, 1.5),
+         kind="interior, fast camera pan (held out)"),
 ]
 SHOT_BY_NAME = {s["name"]: s for s in SHOTS}
 
