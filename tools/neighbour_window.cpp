@@ -79,8 +79,11 @@ void NeighbourWindow::moveTo(Pipeline& pipeline, const std::string& input) {
     const FrameJob& job = sequence_[j];
     std::shared_ptr<const Frame>& frame = loaded_[j];
     if (!frame) try {
-        frame = std::make_shared<const Frame>(
-            loadFrame(frameSource(input_, job)));
+        FrameSource source = frameSource(input_, job);
+        // A frame read again (a later window wants it back) was checked the first time.
+        source.inputCheck = source.inputCheck && !checked_.count(j);
+        frame = std::make_shared<const Frame>(loadFrame(source));
+        checked_.insert(j);
       } catch (const Error& e) {
         loaded_.erase(j);
         throw Error(e.code(), "neighbour " + job.input + ": " + e.what());

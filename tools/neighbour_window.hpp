@@ -8,6 +8,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -56,6 +57,7 @@ class NeighbourWindow {
   int k_, reach_, firstView_;
   std::map<size_t, std::shared_ptr<const Frame>> loaded_;  // frames of the current window
   std::vector<std::optional<size_t>> slots_;               // the sequence frame each view shows
+  std::set<size_t> checked_;                               // frames whose conventions were checked
 };
 
 }  // namespace ssrcl::cli

@@ -17,7 +17,7 @@ namespace ssrcl {
 namespace {
 
 // Frames are sampled on a grid of at most this many pixels: the statistic is a frame mean.
-constexpr long long kMaxSamples = 1LL << 16;
+constexpr long long kMaxSamples = 1LL << 14;
 // A pixel filter blends positions across edges, but most pixels lie inside a surface, where a
 // render's position is its pixel's own to a fraction of a pixel.
 constexpr double kPositionPixelsOff = 1.0;
