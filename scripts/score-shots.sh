@@ -35,6 +35,9 @@ declare -A args=(
   [medium-t3-ef15]="--quality medium --temporal 3 --edge-fade 0.15"
   [medium-t3-ef30]="--quality medium --temporal 3 --edge-fade 0.3"
   [medium-t3-n2-ef10]="--quality medium --temporal 3 --neighbours 2 --edge-fade 0.1"
+  [draft-batch]="--quality draft"  # the batch defaults (--temporal 3, --neighbours 1 reaching 12)
+  [medium-batch]="--quality medium"
+  [high-batch]="--quality high"
   [medium-frameseeds]="--quality medium --temporal 0"  # each frame its own seed, as --temporal's
 )
 configs=("$@")
