@@ -125,9 +125,13 @@ typedef struct {
 // hit), SSRCL_RAY_THICK while its hit is one found behind a surface within its thickness (the
 // surface may be in front of the real hit); the bits above hold the ray's source, 0 for the main
 // frame, 1 + k for view k.
+// SSRCL_RAY_CLEAR: a miss the trace followed to the frame's edge (not stopped by its step limit)
+// in front of every surface on its way (facing it or not): nothing, shown or hidden, lies on that
+// stretch, so views take it up only where it leaves the frame's frustum.
 #define SSRCL_RAY_BEHIND 1
 #define SSRCL_RAY_THICK 2
 #define SSRCL_RAY_SOURCE_SHIFT 2
+#define SSRCL_RAY_CLEAR 128
 
 // One view's camera relative to the main one.
 typedef struct {

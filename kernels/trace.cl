@@ -110,6 +110,8 @@ typedef struct {
   int past;
   float past_t;
   int2 past_cell;
+  // SSRCL_VIEWS only: the ray was behind a pixel's surface somewhere on its way (facing it or not).
+  int hidden;
 } TraceScene;
 
 // The ray's signed distance to a pixel's plane (n, dot(p, n)) / thickness, in thicknesses, times
@@ -138,6 +140,9 @@ inline float hit_pixel(TraceScene* sc, const ScreenRay* ray, float3 dir, int2 ce
   }
   float g_in = plane_side(ray, t_in, plane), g_out = plane_side(ray, t_out, plane);
   *in_front = g_out > 0.0f;
+#if SSRCL_VIEWS
+  if (g_in <= 0.0f || g_out <= 0.0f) sc->hidden = 1;
+#endif
   if (!(dot(plane.xyz, dir) < 0.0f)) return -1.0f;
   if (g_in > 0.0f && g_out <= 0.0f) return t_in + (t_out - t_in) * (g_in / (g_in - g_out));
   // Behind by at most one thickness: -g_in / k <= 1, k > 0.
@@ -266,7 +271,7 @@ inline float8 plane_side8(const ScreenRays8* r, float8 t, float8 px, float8 py, 
 // hit_pixel per lane, for the lanes in `lanes` (the others' results are not used).
 inline float8 hit_pixel8(const TraceScene* sc, const ScreenRays8* r, float8 dx, float8 dy, float8 dz, int8 cx,
                          int8 cy, float8 t_in, float8 t_out, int8 lanes, int8* in_front, int8* seen, int8* behind,
-                         int8* thick, int8* past, float8* g_past) {
+                         int8* thick, int8* hidden, int8* past, float8* g_past) {
   int8 q = clamp(cy, 0, sc->size.y - 1) * sc->size.x + clamp(cx, 0, sc->size.x - 1);
   const RecordLanes plane = scattered_record_lanes(sc->planes, q);
   const float8 px = plane.x, py = plane.y, pz = plane.z, pw = plane.w;
@@ -280,6 +285,7 @@ inline float8 hit_pixel8(const TraceScene* sc, const ScreenRays8* r, float8 dx, 
   *behind |= passed & ~*in_front & *seen;
   *seen |= (lanes & sky) | (passed & *in_front);
   *thick |= lanes & within;
+  *hidden |= lanes & ~sky & ((g_in <= 0.0f) | (g_out <= 0.0f));
   *past = passed & ~*in_front;  // behind by more than its thickness
   *g_past = g_in;
   float8 t_hit = select((float8)(-1.0f), t_in, within);
@@ -304,7 +310,7 @@ inline void note_past_back8(const TraceScene* sc, const ScreenRays8* r, int8 now
 typedef struct {
   ScreenRays8 r;
   float8 dx, dy, dz, nudge, t, t_hit;
-  int8 deeper, mip, cx, cy, hit_x, hit_y, active, iterations, fetches, seen, behind, thick;
+  int8 deeper, mip, cx, cy, hit_x, hit_y, active, iterations, fetches, seen, behind, thick, hidden;
   int8 past, past_x, past_y;  // SSRCL_BACK_KNOWN: TraceScene's past, per lane
   float8 past_t;
 } Packet8;
@@ -330,7 +336,7 @@ inline void packet_begin(Packet8* p, const TraceScene* sc, const ScreenRay* rays
   p->iterations = vload8(0, lane_iterations);
   p->fetches = 0;
   p->seen = vload8(0, lane_seen) != 0;
-  p->behind = p->thick = 0;
+  p->behind = p->thick = p->hidden = 0;
   p->past = p->past_x = p->past_y = 0;
   p->past_t = -1.0f;
   p->nudge = 0.01f / fmax(fabs(r.dsx), fabs(r.dsy));
@@ -355,7 +361,7 @@ inline bool packet_step(Packet8* p, const TraceScene* sc) {
     int8 past_now;
     float8 g_past;
     float8 t_pixel = hit_pixel8(sc, &p->r, p->dx, p->dy, p->dz, p->cx, p->cy, p->t, fmin(t_exit, 1.0f), fine, &in_front,
-                                &p->seen, &p->behind, &p->thick, &past_now, &g_past);
+                                &p->seen, &p->behind, &p->thick, &p->hidden, &past_now, &g_past);
 #if SSRCL_BACK_KNOWN
     note_past_back8(sc, &p->r, past_now, g_past, p->cx, p->cy, p->t, &p->past, &p->past_t, &p->past_x, &p->past_y);
 #endif
@@ -416,7 +422,8 @@ inline bool packet_step(Packet8* p, const TraceScene* sc) {
 // the lane's work and its views flags.
 inline void packet_end(const Packet8* p, TraceScene* sc, const int* live, float* t_hit_out, int2* hit_cell) {
   float t_lane[8];
-  int lane_x[8], lane_y[8], lane_iterations[8], lane_fetches[8], lane_seen[8], lane_behind[8], lane_thick[8];
+  int lane_x[8], lane_y[8], lane_iterations[8], lane_fetches[8], lane_seen[8], lane_behind[8], lane_thick[8],
+      lane_hidden[8];
   vstore8(p->t_hit, 0, t_lane);
   vstore8(p->hit_x, 0, lane_x);
   vstore8(p->hit_y, 0, lane_y);
@@ -425,6 +432,7 @@ inline void packet_end(const Packet8* p, TraceScene* sc, const int* live, float*
   vstore8(p->seen, 0, lane_seen);
   vstore8(p->behind, 0, lane_behind);
   vstore8(p->thick, 0, lane_thick);
+  vstore8(p->hidden, 0, lane_hidden);
 #if SSRCL_BACK_KNOWN
   int lane_past[8], lane_past_x[8], lane_past_y[8];
   float lane_past_t[8];
@@ -448,6 +456,7 @@ inline void packet_end(const Packet8* p, TraceScene* sc, const int* live, float*
     sc[k].seen = lane_seen[k] != 0;
     sc[k].behind |= lane_behind[k] != 0;
     sc[k].thick |= lane_thick[k] != 0;
+    sc[k].hidden |= lane_hidden[k] != 0;
 #endif
   }
 }
@@ -846,7 +855,9 @@ __kernel void trace_rays(TraceParams params, __global const float* hzb, __global
 #endif
 #if SSRCL_VIEWS
       // Only the primary ray's passage counts: the glossy hit's second ray below only shades the hit.
-      ray_state[lane[k].record] = (sc->behind ? SSRCL_RAY_BEHIND : 0) | (t >= 0.0f && sc->thick ? SSRCL_RAY_THICK : 0);
+      ray_state[lane[k].record] =
+          (sc->behind ? SSRCL_RAY_BEHIND : 0) | (t >= 0.0f && sc->thick ? SSRCL_RAY_THICK : 0) |
+          (t < 0.0f && !sc->hidden && first.live[k] && sc->iterations < sc->max_iterations ? SSRCL_RAY_CLEAR : 0);
 #endif
       first.t[k] = t;
       if (t < 0.0f) continue;

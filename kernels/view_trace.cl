@@ -137,6 +137,18 @@ __kernel void trace_views(ViewTraceParams params, __global const ViewCamera* vie
       const float len = hit && !thick ? 1.02f * main_distance : 1e6f * fmax(length(pk), cam.near_plane);
       float u0, u1;
       if (!clip_to_frustum(proj, cam.near_plane, cam.far_plane, pk, dk, len, &u0, &u1)) continue;
+      // A neighbouring frame takes a clear miss up where it leaves the frame's frustum (2% before,
+      // so that a surface at the frame's edge is not stepped over): on the stretch before, the
+      // frame shows nothing on the ray's way, and what the neighbour shows there has moved since
+      // (moved_since); a view of the same moment traces it whole. p and pk are the same point, dir
+      // and dk the same unit direction: distances along the ray are the same in both.
+      float f0, f1;
+      if (cam.other_time && !hit && (state & SSRCL_RAY_CLEAR) &&
+          clip_to_frustum(vload16(0, params.frame.proj), params.frame.near_plane, params.frame.far_plane, p, dir,
+                          len, &f0, &f1)) {
+        u0 = fmax(u0, 0.98f * f1);
+        if (!(u0 < u1)) continue;
+      }
 
       const int k = count++;
       const ViewRay made = {record, i, h, ray_radiance[record], state, p, main_distance};

@@ -417,7 +417,10 @@ TEST(Neighbours, BatchFrameEqualsTraceWithTheNeighbours) {
 // sky in the frame meet it in the neighbour; taken from a view of the same moment
 // (ViewTime::Same) they show it, from a neighbouring frame (ViewTime::Other) they do not: the
 // frame shows the floor well behind where the neighbour puts the box, so it has moved, and those
-// pixels keep the frame's own pass, bit for bit.
+// pixels keep the frame's own pass, bit for bit. (These rays leave the frame clear, in front of
+// everything: a neighbouring frame takes them up only past the frame's frustum, so the box is
+// not even traced; a ray that passed behind a surface is traced whole and refused by
+// view_trace.cl's moved_since.)
 TEST(Neighbours, AMovedObjectIsNotTakenFromANeighbour) {
   const Scene scene = makeScene("spheres_on_mirror");
   Scene moved = scene;
