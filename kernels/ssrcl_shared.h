@@ -149,6 +149,7 @@ typedef struct {
   ssrcl_int listed, batch_size, first_sample;  // as the trace's batch
   ssrcl_int view;          // the view this pass traces in
   ssrcl_int rank;          // rays for which it is their rank-th best view
+  ssrcl_int rank_views;    // 1 in the first pass: it ranks every ray's views for all passes
   ssrcl_int view_count;
   ssrcl_int level_count;   // the view's HZB and colour levels
   ssrcl_int max_iterations;

@@ -8,7 +8,8 @@
 // One pass per (rank, view): a ray takes part in the pass of view k at rank r when k is its r-th
 // best view, so every ray tries its views best first and at most SSRCL_VIEWS_PER_RAY of them.
 // Views are ranked by where the ray goes: those whose frustum holds the ray's origin first, then
-// by how far the ray heads along the view's line of sight (it stays longest in that view).
+// by how far the ray heads along the view's line of sight (it stays longest in that view). The
+// first pass ranks them once for all passes (view_order: a byte per rank).
 
 inline float view_score(__global const ViewCamera* views, int k, float3 p, float3 dir) {
   ViewCamera v = views[k];
@@ -20,18 +21,24 @@ inline float view_score(__global const ViewCamera* views, int k, float3 p, float
   return (inside ? 2.0f : 0.0f) - dk.z / length(dk);
 }
 
-// Whether view k has rank `rank` among the ray's views (0 best; ties go to the lower index): the
-// other views are scored only until more than `rank` of them are found better.
-inline bool view_has_rank(__global const ViewCamera* views, int view_count, int k, int rank, float3 p, float3 dir) {
-  float own = view_score(views, k, p, dir);
-  int better = 0;
-  for (int j = 0; j < view_count && better <= rank; ++j) {
-    if (j == k) continue;
-    float other = view_score(views, j, p, dir);
-    better += other > own || (other == own && j < k);
+// The ray's best SSRCL_VIEWS_PER_RAY views, byte r the view of rank r (0 best; ties go to the
+// lower index), 255 past the last view.
+inline uint view_order(__global const ViewCamera* views, int view_count, float3 p, float3 dir) {
+  float score[SSRCL_MAX_VIEWS];
+  for (int k = 0; k < view_count; ++k) score[k] = view_score(views, k, p, dir);
+  uint order = 0xffffffffu;
+  for (int r = 0; r < min(view_count, SSRCL_VIEWS_PER_RAY); ++r) {
+    int best = -1;
+    for (int k = 0; k < view_count; ++k)
+      if (score[k] > -INFINITY && (best < 0 || score[k] > score[best])) best = k;
+    if (best < 0) break;
+    order = (order & ~(0xffu << (8 * r))) | ((uint)best << (8 * r));
+    score[best] = -INFINITY;
   }
-  return better == rank;
+  return order;
 }
+
+inline bool has_rank(uint order, int rank, int view) { return ((order >> (8 * rank)) & 0xffu) == (uint)view; }
 
 // Clips the ray p + u dir, u in [0, len], to the view's frustum (Liang-Barsky on its clip-space
 // planes, each affine in u). False when no part of it is inside.
@@ -93,7 +100,8 @@ __kernel void trace_views(ViewTraceParams params, __global const ViewCamera* vie
                           __global const float* hzb, __global const HzbLevel* levels,
                           __global const float4* positions, __global const float4* normals,
                           __global const float4* planes, __global const float4* color_pyramid,
-                          __global float4* ray_hit, __global float4* ray_radiance, __global uchar* ray_state) {
+                          __global float4* ray_hit, __global float4* ray_radiance, __global uchar* ray_state,
+                          __global uint* ray_view_order) {
   const int2 main_size = (int2)(params.frame.width, params.frame.height);
   const int batch_size = params.batch_size;
   const ViewCamera cam = views[params.view];
@@ -122,13 +130,18 @@ __kernel void trace_views(ViewTraceParams params, __global const ViewCamera* vie
       const bool hit = h.w >= 0.0f, thick = (state & SSRCL_RAY_THICK) != 0;
       if (hit && h.w >= 1.0f && !(state & SSRCL_RAY_BEHIND) && !thick) continue;  // resolved in full
       if (!hit && !(dot(h.xyz, h.xyz) > 0.0f)) continue;  // no ray (facing away, below the surface)
+      if (!params.rank_views && !has_rank(ray_view_order[record], params.rank, params.view)) continue;
 
       float3 v;
       const float3 p = pixel_view_point(vload16(0, params.frame.inv_proj), main_size,
                                         (int2)(i % main_size.x, i / main_size.x), main_positions[i].w, &v);
       const float3 dir = hit ? normalize(h.xyz - p) : h.xyz;
       const float main_distance = hit ? length(h.xyz - p) : INFINITY;
-      if (!view_has_rank(views, params.view_count, params.view, params.rank, p, dir)) continue;
+      if (params.rank_views) {
+        const uint order = view_order(views, params.view_count, p, dir);
+        ray_view_order[record] = order;
+        if (!has_rank(order, params.rank, params.view)) continue;
+      }
 
       const float3 pk = mat_mul(from_main, (float4)(p, 1.0f)).xyz;
       const float3 dk = normalize(mat3_mul(from_main, dir));

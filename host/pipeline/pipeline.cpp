@@ -149,7 +149,7 @@ void Pipeline::Impl::plan() {
   environmentFill.plan(buffers, frame);
   resources.plan(access, buffers, Role::Reflection, frame.pixels() * sizeof(cl_float4), CL_MEM_WRITE_ONLY);
   resources.plan(access, buffers, Role::Distance, frame.pixels() * sizeof(float), CL_MEM_WRITE_ONLY);
-  viewStage.plan(buffers, views);
+  viewStage.plan(buffers, views, frame.pixels() * size_t(trace.batchSize()));
   resources.plan(access, buffers, Role::ViewShare, viewCount > 0 ? frame.pixels() * sizeof(cl_float2) : 0,
                  CL_MEM_WRITE_ONLY);
   std::string what = "a " + std::to_string(frame.width) + "x" + std::to_string(frame.height) + " frame";

@@ -57,7 +57,7 @@ void ViewStage::configure(Device::Impl& device, const TraceSettings& s, size_t v
   }
 }
 
-void ViewStage::plan(DeviceBuffers& buffers, const std::vector<ViewSource>& views) {
+void ViewStage::plan(DeviceBuffers& buffers, const std::vector<ViewSource>& views, size_t rayRecords) {
   colorChannels_.clear();
   for (size_t k = 0; k < units_.size(); ++k) {
     Unit& u = *units_[k];
@@ -71,6 +71,7 @@ void ViewStage::plan(DeviceBuffers& buffers, const std::vector<ViewSource>& view
     u.colors.plan(u.resources, buffers, u.frame);
   }
   buffers.add(cameras_, units_.size() * sizeof(ViewCamera), CL_MEM_READ_ONLY);
+  buffers.add(viewOrder_, units_.empty() ? 0 : rayRecords * sizeof(cl_uint));
 }
 
 void ViewStage::bind(cl::CommandQueue& q, const Camera& main, const std::vector<ViewSource>& views,
@@ -100,11 +101,11 @@ void ViewStage::bind(cl::CommandQueue& q, const Camera& main, const std::vector<
     auto view = [&](Role role) { return u.resources.read(viewAccess, role); };
     bindArgs(u.kernel, 1,
              "views, main_positions, main_normals, ray_list, pixel_rays, hzb, levels, positions, normals, planes, "
-             "color_pyramid, ray_hit, ray_radiance, ray_state",
+             "color_pyramid, ray_hit, ray_radiance, ray_state, ray_view_order",
              cameras_, in(Role::Positions), in(Role::Normals), in(Role::RayList), in(Role::PixelRays),
              view(Role::DepthPyramid), view(Role::PyramidLevels), view(Role::Positions), view(Role::Normals),
              view(Role::Planes), view(Role::ColorPyramid), out(Role::RayHits), out(Role::RayRadiance),
-             out(Role::RayStates));
+             out(Role::RayStates), viewOrder_);
   }
   if (!cameras.empty())
     q.enqueueWriteBuffer(cameras_, CL_TRUE, 0, cameras.size() * sizeof(ViewCamera), cameras.data());
@@ -164,6 +165,7 @@ void ViewStage::trace(cl::CommandQueue& q, const TraceParams& batch, StageEvents
   for (p.rank = 0; p.rank < ranks; ++p.rank) {
     for (size_t k = 0; k < units_.size(); ++k) {
       p.view = static_cast<cl_int>(k);
+      p.rank_views = p.rank == 0 && k == 0;
       p.level_count = static_cast<cl_int>(units_[k]->frame.levels.size());
       units_[k]->kernel.setArg(0, p);
       q.enqueueNDRangeKernel(units_[k]->kernel, cl::NullRange, cl::NDRange(range), cl::NDRange(64), nullptr,

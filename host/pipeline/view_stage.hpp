@@ -34,7 +34,8 @@ class ViewStage {
   static const StageAccess viewAccess;
 
   void configure(Device::Impl& device, const TraceSettings& s, size_t viewCount);
-  void plan(DeviceBuffers& buffers, const std::vector<ViewSource>& views);
+  // `rayRecords`: the trace's ray records (pixels x batch size).
+  void plan(DeviceBuffers& buffers, const std::vector<ViewSource>& views, size_t rayRecords);
   void bind(cl::CommandQueue& q, const Camera& main, const std::vector<ViewSource>& views,
             const FrameResources& resources);
   // The setup, HZB, colour pyramid and thickness of each view not yet prepared.
@@ -60,7 +61,8 @@ class ViewStage {
   };
   std::vector<std::unique_ptr<Unit>> units_;  // stable addresses: DeviceBuffers keeps pointers
   cl::Program program_;
-  cl::Buffer cameras_;  // ViewCamera per view
+  cl::Buffer cameras_;    // ViewCamera per view
+  cl::Buffer viewOrder_;  // per ray record: its best views, a byte per rank (kernels/view_trace.cl)
   std::vector<int> colorChannels_;
   float radianceLimit_ = 0.0f;
 };
