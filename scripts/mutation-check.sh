@@ -42,6 +42,7 @@ LINEAR_MAPPING="test_glossy_analytic:*LinearRoughnessMapping*"
 THICKNESS="test_differential:*NonDefaultThickness*"
 CREASE="test_glossy_analytic:*Crease*"
 GLOSSY_HITS="test_glossy_hits:*"
+HIDDEN="test_multiview:*HiddenReflectionsComeFromANeighbouringFrameToo*"
 
 # name | fast (1 = in the CI subset) | kernel file | exact pattern | replacement | tests
 MUTANTS=(
@@ -65,6 +66,7 @@ MUTANTS=(
   "constant_thickness_ignored|0|setup.cl|float thickness_rel = params.adaptive_thickness ? 1.0f : params.thickness_rel;|float thickness_rel = params.adaptive_thickness ? 1.0f : 0.002f;|$THICKNESS"
   "neighbour_normal_check_off|0|resolve.cl|&& dot_lanes(f.nx, f.ny, f.nz, n_q.x, n_q.y, n_q.z) >= 0.9f|/* mutant */|$CREASE"
   "second_ray_finds_nothing|0|trace.cl|if (t2 < 0.0f) return (float4)(0.0f, 0.0f, 0.0f, -1.0f);|return (float4)(0.0f, 0.0f, 0.0f, -1.0f);|$GLOSSY_HITS"
+  "clear_ignores_hidden|0|trace.cl|(t < 0.0f && !sc->hidden &&|(t < 0.0f && !sc->behind &&|$HIDDEN"
 )
 
 echo "== building the test executables against mutable kernels in $BUILD"
