@@ -359,6 +359,19 @@ TEST(Multiview, OutOfMemoryNamesTheViews) {
   }
 }
 
+// A narrow lens (30 degrees) dollying back from spheres_on_mirror, `dolly` units a frame.
+AnalyticSequence dollySequence(const std::string& directory, int frames, int width, int height, double dolly) {
+  AnalyticSequence sequence;
+  sequence.directory = directory;
+  sequence.frameCount = frames;
+  sequence.width = width;
+  sequence.height = height;
+  sequence.fovYDegrees = 30.0;
+  sequence.degreesPerFrame = 0.0;
+  sequence.dollyPerFrame = dolly;
+  return sequence;
+}
+
 // Neighbouring frames as views (`ssrcl batch --neighbours`): a narrow lens dollying back from
 // spheres_on_mirror, 4 units a frame over three frames, each frame the others' neighbours. The
 // first frame's floor reflects the spheres' tops above it; the later frames, further back, see
@@ -369,13 +382,7 @@ struct NeighbourShot {
   std::string pattern;
   CommandResult batch;
   NeighbourShot() {
-    sequence.directory = dir.path().string();
-    sequence.frameCount = 3;
-    sequence.width = 480;
-    sequence.height = 270;
-    sequence.fovYDegrees = 30.0;
-    sequence.degreesPerFrame = 0.0;
-    sequence.dollyPerFrame = 4.0;
+    sequence = dollySequence(dir.path().string(), 3, 480, 270, 4.0);
     pattern = writeAnalyticSequence(sequence);
     batch = runCommand(shellQuote(SSRCL_CLI) + " batch " + shellQuote(pattern) + " -o " +
                        shellQuote(dir.file("out") + "/") + " --edge-fade 0 --neighbours 1");
@@ -482,14 +489,7 @@ TEST(Neighbours, AMovedObjectIsNotTakenFromANeighbour) {
 // `ssrcl trace` with those two as --neighbour, bit for bit.
 TEST(Neighbours, FartherNeighboursShowMoreOfWhatLiesOffScreen) {
   TempDir dir{"ssrcl-neighbour-reach"};
-  AnalyticSequence sequence;
-  sequence.directory = dir.path().string();
-  sequence.frameCount = 5;
-  sequence.width = 240;
-  sequence.height = 135;
-  sequence.fovYDegrees = 30.0;
-  sequence.degreesPerFrame = 0.0;
-  sequence.dollyPerFrame = 1.0;
+  const AnalyticSequence sequence = dollySequence(dir.path().string(), 5, 240, 135, 1.0);
   const std::string pattern = writeAnalyticSequence(sequence);
   const auto frame = [&](int k) { return dir.file("shot.100" + std::to_string(k + 1) + ".exr"); };
   const auto batch = [&](const std::string& out, int reach) {
