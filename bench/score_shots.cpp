@@ -68,9 +68,10 @@ int main(int argc, char** argv) {
   app.add_option("--shot", shotList, "Only these shots (comma-separated)");
   app.add_option("--json", jsonPath, "Write every figure as JSON");
   std::string dumpDir;
-  app.add_option("--dump", dumpDir,
-                 "Write <dump>/<config>.<frame stem>.ppm of every frame after the first: the pass, Cycles, the temporal "
-                 "error, the references' change and the pass's");
+  app.add_option(
+      "--dump", dumpDir,
+      "Write <dump>/<config>.<frame stem>.ppm of every frame after the first: the pass, Cycles, the temporal "
+      "error, the references' change and the pass's");
   bool breakdown = false;
   app.add_flag("--breakdown", breakdown, "Print where each configuration's temporal error lies");
   CLI11_PARSE(app, argc, argv);

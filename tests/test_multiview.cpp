@@ -126,7 +126,8 @@ WithAndWithout compare(const Scene& scene, const ViewParams& frameParams, const 
   const AnalyticGBuffer g = renderGBuffer(scene, camera);
   const MirrorTruth truth = exactMirrorReflection(scene, camera, g);
   const View view = renderView(scene, viewParams, 960, 540);
-  return {score(g, truth, cls, view, trace(g, camera, {&view}, time)), score(g, truth, cls, view, trace(g, camera, {}))};
+  return {score(g, truth, cls, view, trace(g, camera, {&view}, time)),
+          score(g, truth, cls, view, trace(g, camera, {}))};
 }
 
 // The mirror floor seen through a narrow lens reflects the spheres' tops, above the frame; a wide

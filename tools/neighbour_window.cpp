@@ -40,7 +40,8 @@ std::vector<size_t> NeighbourWindow::members(size_t index, size_t count, int k, 
     at = std::clamp(at, 0L, long(count) - 1);
     for (long d = 0; d < long(count); ++d)
       for (const long c : {at - d, at + d})
-        if (c >= 0 && c < long(count) && size_t(c) != index && std::find(out.begin(), out.end(), size_t(c)) == out.end()) {
+        if (c >= 0 && c < long(count) && size_t(c) != index &&
+            std::find(out.begin(), out.end(), size_t(c)) == out.end()) {
           out.push_back(size_t(c));
           return;
         }
