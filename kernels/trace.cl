@@ -112,6 +112,8 @@ typedef struct {
   int2 past_cell;
   // SSRCL_VIEWS only: the ray was behind a pixel's surface somewhere on its way (facing it or not).
   int hidden;
+  // SSRCL_BACK_KNOWN: the hit is where the ray entered a surface with a known back through that back.
+  int entered;
 } TraceScene;
 
 // The ray's signed distance to a pixel's plane (n, dot(p, n)) / thickness, in thicknesses, times
@@ -124,7 +126,8 @@ inline float plane_side(const ScreenRay* r, float t, float4 plane) {
 // The exact test against one pixel's surface (the plane through its point with its normal) for
 // the ray's stretch [t_in, t_out] over that pixel: a hit where the ray crosses the plane from its
 // front, or where it is already behind by less than the thickness (surfaces are assumed that
-// thick). Surfaces facing away from the ray cannot be reached. Returns the hit's t or -1;
+// thick). Surfaces facing away from the ray cannot be reached from their front; with a known back
+// (SSRCL_BACK_KNOWN), through it. Returns the hit's t or -1;
 // *in_front tells whether the ray leaves the stretch in front of the surface.
 inline float hit_pixel(TraceScene* sc, const ScreenRay* ray, float3 dir, int2 cell, float t_in, float t_out,
                        bool* in_front) {
@@ -143,7 +146,21 @@ inline float hit_pixel(TraceScene* sc, const ScreenRay* ray, float3 dir, int2 ce
 #if SSRCL_VIEWS
   if (g_in <= 0.0f || g_out <= 0.0f) sc->hidden = 1;
 #endif
-  if (!(dot(plane.xyz, dir) < 0.0f)) return -1.0f;
+  if (!(dot(plane.xyz, dir) < 0.0f)) {
+#if SSRCL_BACK_KNOWN
+    // A surface facing away whose back is known is still solid: a ray that enters it through its
+    // back (from behind the back to within the thickness: h = g + k goes from < 0 to >= 0) stops
+    // there, on a face the screen does not show (shaded black: trace_rays).
+    if (sc->guess[cell.y * sc->size.x + cell.x] > 0.0f) {
+      float h_in = g_in + ray_q(ray, t_in).w, h_out = g_out + ray_q(ray, t_out).w;
+      if (h_in < 0.0f && h_out >= 0.0f) {
+        sc->entered = 1;
+        return t_in + (t_out - t_in) * (h_in / (h_in - h_out));
+      }
+    }
+#endif
+    return -1.0f;
+  }
   if (g_in > 0.0f && g_out <= 0.0f) return t_in + (t_out - t_in) * (g_in / (g_in - g_out));
   // Behind by at most one thickness: -g_in / k <= 1, k > 0.
   if (g_in <= 0.0f && -g_in <= ray_q(ray, t_in).w) {
@@ -271,7 +288,7 @@ inline float8 plane_side8(const ScreenRays8* r, float8 t, float8 px, float8 py, 
 // hit_pixel per lane, for the lanes in `lanes` (the others' results are not used).
 inline float8 hit_pixel8(const TraceScene* sc, const ScreenRays8* r, float8 dx, float8 dy, float8 dz, int8 cx,
                          int8 cy, float8 t_in, float8 t_out, int8 lanes, int8* in_front, int8* seen, int8* behind,
-                         int8* thick, int8* hidden, int8* past, float8* g_past) {
+                         int8* thick, int8* hidden, int8* past, float8* g_past, int8* entered) {
   int8 q = clamp(cy, 0, sc->size.y - 1) * sc->size.x + clamp(cx, 0, sc->size.x - 1);
   const RecordLanes plane = scattered_record_lanes(sc->planes, q);
   const float8 px = plane.x, py = plane.y, pz = plane.z, pw = plane.w;
@@ -289,6 +306,14 @@ inline float8 hit_pixel8(const TraceScene* sc, const ScreenRays8* r, float8 dx, 
   *past = passed & ~*in_front;  // behind by more than its thickness
   *g_past = g_in;
   float8 t_hit = select((float8)(-1.0f), t_in, within);
+#if SSRCL_BACK_KNOWN
+  {  // hit_pixel's entry through a known back
+    float8 h_in = g_in + (r->q0w + t_in * r->dqw), h_out = g_out + (r->q0w + t_out * r->dqw);
+    int8 entry = lanes & ~sky & ~facing & (gather8(sc->guess, q) > 0.0f) & (h_in < 0.0f) & (h_out >= 0.0f);
+    *entered = entry;
+    t_hit = select(t_hit, t_in + (t_out - t_in) * (h_in / (h_in - h_out)), entry);
+  }
+#endif
   return select(t_hit, t_in + (t_out - t_in) * (g_in / (g_in - g_out)), crossing);
 }
 
@@ -310,7 +335,7 @@ inline void note_past_back8(const TraceScene* sc, const ScreenRays8* r, int8 now
 typedef struct {
   ScreenRays8 r;
   float8 dx, dy, dz, nudge, t, t_hit;
-  int8 deeper, mip, cx, cy, hit_x, hit_y, active, iterations, fetches, seen, behind, thick, hidden;
+  int8 deeper, mip, cx, cy, hit_x, hit_y, active, iterations, fetches, seen, behind, thick, hidden, entered;
   int8 past, past_x, past_y;  // SSRCL_BACK_KNOWN: TraceScene's past, per lane
   float8 past_t;
 } Packet8;
@@ -336,7 +361,7 @@ inline void packet_begin(Packet8* p, const TraceScene* sc, const ScreenRay* rays
   p->iterations = vload8(0, lane_iterations);
   p->fetches = 0;
   p->seen = vload8(0, lane_seen) != 0;
-  p->behind = p->thick = p->hidden = 0;
+  p->behind = p->thick = p->hidden = p->entered = 0;
   p->past = p->past_x = p->past_y = 0;
   p->past_t = -1.0f;
   p->nudge = 0.01f / fmax(fabs(r.dsx), fabs(r.dsy));
@@ -358,14 +383,15 @@ inline bool packet_step(Packet8* p, const TraceScene* sc) {
   // Each side's texels are read only where a lane needs them.
   int8 in_front = 0, hit = 0;
   if (any_lane(fine)) {
-    int8 past_now;
+    int8 past_now, entered_now = 0;
     float8 g_past;
     float8 t_pixel = hit_pixel8(sc, &p->r, p->dx, p->dy, p->dz, p->cx, p->cy, p->t, fmin(t_exit, 1.0f), fine, &in_front,
-                                &p->seen, &p->behind, &p->thick, &p->hidden, &past_now, &g_past);
+                                &p->seen, &p->behind, &p->thick, &p->hidden, &past_now, &g_past, &entered_now);
 #if SSRCL_BACK_KNOWN
     note_past_back8(sc, &p->r, past_now, g_past, p->cx, p->cy, p->t, &p->past, &p->past_t, &p->past_x, &p->past_y);
 #endif
     hit = fine & (t_pixel >= 0.0f);
+    p->entered |= hit & entered_now;
     p->t_hit = select(p->t_hit, t_pixel, hit);
     p->hit_x = select(p->hit_x, p->cx, hit);
     p->hit_y = select(p->hit_y, p->cy, hit);
@@ -423,7 +449,7 @@ inline bool packet_step(Packet8* p, const TraceScene* sc) {
 inline void packet_end(const Packet8* p, TraceScene* sc, const int* live, float* t_hit_out, int2* hit_cell) {
   float t_lane[8];
   int lane_x[8], lane_y[8], lane_iterations[8], lane_fetches[8], lane_seen[8], lane_behind[8], lane_thick[8],
-      lane_hidden[8];
+      lane_hidden[8], lane_entered[8];
   vstore8(p->t_hit, 0, t_lane);
   vstore8(p->hit_x, 0, lane_x);
   vstore8(p->hit_y, 0, lane_y);
@@ -433,6 +459,7 @@ inline void packet_end(const Packet8* p, TraceScene* sc, const int* live, float*
   vstore8(p->behind, 0, lane_behind);
   vstore8(p->thick, 0, lane_thick);
   vstore8(p->hidden, 0, lane_hidden);
+  vstore8(p->entered, 0, lane_entered);
 #if SSRCL_BACK_KNOWN
   int lane_past[8], lane_past_x[8], lane_past_y[8];
   float lane_past_t[8];
@@ -446,6 +473,7 @@ inline void packet_end(const Packet8* p, TraceScene* sc, const int* live, float*
     t_hit_out[k] = t_lane[k];
     hit_cell[k] = (int2)(lane_x[k], lane_y[k]);
     sc[k].iterations = lane_iterations[k];
+    sc[k].entered = lane_entered[k] != 0;
     sc[k].fetches += lane_fetches[k];
 #if SSRCL_BACK_KNOWN
     sc[k].past = lane_past[k] != 0;
@@ -870,10 +898,19 @@ __kernel void trace_rays(TraceParams params, __global const float* hzb, __global
       // A prefiltered hit is looked up once the batch's hits are counted (hit_prefilter.cl): recorded
       // as the screen position and the mip of its footprint.
       bool prefiltered = prefiltered_hit(sc, q, mirror ? 0.0f : alpha, params.cone_scale);
+#if SSRCL_BACK_KNOWN
+      // A hit on a known back (hit_pixel) is on a face the screen does not show, which its light
+      // seldom reaches (the underside of a seat, a plank's): black. Measured against the model's
+      // guess and against leaving the ray a miss: docs/BENCHMARKS.md "Back-face depth".
+      if (sc->entered) prefiltered = false;
+#endif
       hit_radiance[k] =
           prefiltered
               ? (float4)(s, -1.0f - hit_mip_level(sc, proj, &ray, t, length(hit - p), alpha, params.cone_scale), 0.0f)
               : color_pyramid[q];
+#if SSRCL_BACK_KNOWN
+      if (sc->entered) hit_radiance[k].xyz = (float3)(0.0f);
+#endif
       hit_point[k] = hit;
       hit_screen[k] = s;
       // A hit on a glossy pixel: its screen colour is what it reflects toward the camera, not toward
@@ -887,6 +924,9 @@ __kernel void trace_rays(TraceParams params, __global const float* hzb, __global
       bool bounce = !mirror || nq.w <= mirror_roughness;
       hit_glossy[k] =
           !prefiltered && params.has_base && nq.w < params.glossy_hit_roughness && (SSRCL_MATERIAL_HITS || bounce);
+#if SSRCL_BACK_KNOWN
+      if (sc->entered) hit_glossy[k] = 0;
+#endif
       if (hit_glossy[k] && bounce)
         second.live[k] = bounce_ray(proj, size, near_plane, far_plane, mirror_roughness, hit, dir, nq,
                                     fmax(roughness_to_alpha(nq.w, SSRCL_ROUGHNESS_MAPPING), 1e-4f), q, sample, seed,

@@ -43,6 +43,7 @@ THICKNESS="test_differential:*NonDefaultThickness*"
 CREASE="test_glossy_analytic:*Crease*"
 GLOSSY_HITS="test_glossy_hits:*"
 HIDDEN="test_multiview:*HiddenReflectionsComeFromANeighbouringFrameToo*"
+BACK="test_differential:*BackFaceDepth*"
 
 # name | fast (1 = in the CI subset) | kernel file | exact pattern | replacement | tests
 MUTANTS=(
@@ -67,6 +68,7 @@ MUTANTS=(
   "neighbour_normal_check_off|0|resolve.cl|&& dot_lanes(f.nx, f.ny, f.nz, n_q.x, n_q.y, n_q.z) >= 0.9f|/* mutant */|$CREASE"
   "second_ray_finds_nothing|0|trace.cl|if (t2 < 0.0f) return (float4)(0.0f, 0.0f, 0.0f, -1.0f);|return (float4)(0.0f, 0.0f, 0.0f, -1.0f);|$GLOSSY_HITS"
   "clear_ignores_hidden|0|trace.cl|(t < 0.0f && !sc->hidden &&|(t < 0.0f && !sc->behind &&|$HIDDEN"
+  "back_entry_off|0|trace.cl|if (h_in < 0.0f && h_out >= 0.0f) {|if (false) {|$BACK"
 )
 
 echo "== building the test executables against mutable kernels in $BUILD"

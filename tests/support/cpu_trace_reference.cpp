@@ -139,7 +139,6 @@ std::vector<CpuRay> cpuMirrorTrace(const Camera& camera, const Image& depth, con
         const int q = sf.index(cx, cy);
         if (!sf.valid[q]) return false;
         const dvec3 nq = sf.normal[q];
-        if (!(glm::dot(nq, dir) < 0)) return false;
         // Signed distance to the plane times 1 / w: affine in t, so its root is exact.
         const auto side = [&](double t) {
           const dvec4 qq = seg.q0 + t * seg.dq;
@@ -147,7 +146,15 @@ std::vector<CpuRay> cpuMirrorTrace(const Camera& camera, const Image& depth, con
         };
         const double g0 = side(t0), g1 = side(t1);
         double tHit = -1;
-        if (g0 > 0 && g1 <= 0) {
+        if (!(glm::dot(nq, dir) < 0)) {
+          // Facing away: a known back is entered from behind it (g + thickness / w crosses 0 upward).
+          if (!(sf.guess[q] > 0)) return false;
+          const double h0 = g0 + sf.behind[q] * (seg.q0.w + t0 * seg.dq.w);
+          const double h1 = g1 + sf.behind[q] * (seg.q0.w + t1 * seg.dq.w);
+          if (!(h0 < 0 && h1 >= 0)) return false;
+          tHit = t0 + (t1 - t0) * (h0 / (h0 - h1));
+          ray.enteredBack = true;
+        } else if (g0 > 0 && g1 <= 0) {
           tHit = t0 + (t1 - t0) * (g0 / (g0 - g1));
         } else if (g0 <= 0 &&
                    -g0 / (seg.q0.w + t0 * seg.dq.w) <= sf.behind[q]) {
