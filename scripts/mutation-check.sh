@@ -49,7 +49,7 @@ BACK="test_differential:*BackFaceDepth*"
 MUTANTS=(
   "thickness_x0.5|1|trace.cl|-g_in <= ray_q(ray, t_in).w|-g_in <= 0.5f * ray_q(ray, t_in).w|$DIFFERENTIAL $MIRROR"
   "thickness_x2|0|trace.cl|-g_in <= ray_q(ray, t_in).w|-g_in <= 2.0f * ray_q(ray, t_in).w|$DIFFERENTIAL $MIRROR"
-  "no_backface_rejection|1|trace.cl|if (!(dot(plane.xyz, dir) < 0.0f)) return -1.0f;|/* mutant */|$DIFFERENTIAL $MIRROR"
+  "no_backface_rejection|1|trace.cl|if (!(dot(plane.xyz, dir) < 0.0f)) {|if (false) {|$DIFFERENTIAL $MIRROR"
   "pdf_alpha_x1.05|1|ggx_lanes.cl|ggx_vndf_pdf_from_half_lanes(ol, h, alpha), above)|ggx_vndf_pdf_from_half_lanes(ol, h, 1.05f * alpha), above)|$GLOSSY_FAST $GLOSSY"
   "smith_g_dropped|0|resolve.cl|(lobe.c * lz + s)|(2.0f * lz)|$GLOSSY_FAST $GLOSSY"
   "smith_g_uncorrelated|0|resolve.cl|(lobe.c * lz + s)|(0.5f * (1.0f + lobe.c) * (lz + s))|$GLOSSY_FAST $GLOSSY"
