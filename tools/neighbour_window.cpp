@@ -70,8 +70,7 @@ void NeighbourWindow::moveTo(Pipeline& pipeline, const std::string& input) {
     if (slot && !wanted(*slot)) slot.reset();
   // Frames kept are this window's and the next frame's (frames go in order): the others are read
   // again when a later window wants them, so memory stays within 4K G-buffers however far the reach.
-  const size_t following = index + 1 < sequence_.size() ? index + 1 : index;
-  const std::vector<size_t> next = members(following, sequence_.size(), k_, reach_);
+  const std::vector<size_t> next = windowAfter(index);
   for (auto it = loaded_.begin(); it != loaded_.end();)
     it = wanted(it->first) || std::find(next.begin(), next.end(), it->first) != next.end() ? std::next(it)
                                                                                            : loaded_.erase(it);
@@ -95,10 +94,13 @@ void NeighbourWindow::moveTo(Pipeline& pipeline, const std::string& input) {
   }
 }
 
+std::vector<size_t> NeighbourWindow::windowAfter(size_t index) const {
+  return members(std::min(index + 1, sequence_.size() - 1), sequence_.size(), k_, reach_);
+}
+
 void NeighbourWindow::keep(const std::string& input, Frame&& frame) {
   const size_t index = indexOf(input);
-  const size_t next = index + 1 < sequence_.size() ? index + 1 : index;
-  const std::vector<size_t> wanted = members(next, sequence_.size(), k_, reach_);
+  const std::vector<size_t> wanted = windowAfter(index);
   if (std::find(wanted.begin(), wanted.end(), index) != wanted.end())
     loaded_[index] = std::make_shared<const Frame>(std::move(frame));
 }

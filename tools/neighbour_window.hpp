@@ -50,6 +50,9 @@ class NeighbourWindow {
 
  private:
   size_t indexOf(const std::string& input) const;
+  // The window of the frame after `index` (its own at the sequence's end): what a frame traced in
+  // order is kept for.
+  std::vector<size_t> windowAfter(size_t index) const;
 
   GBufferInputOptions input_;  // as views are read
   std::vector<FrameJob> sequence_;
