@@ -19,6 +19,28 @@ struct Pool {
   size_t pixels = 0;
 };
 
+// The reference with its values zeroed: against it, a pass's own change along the surface.
+test::CyclesReference blanked(test::CyclesReference r) {
+  std::fill(r.cycles.begin(), r.cycles.end(), 0.0);
+  return r;
+}
+
+// Per pixel of frame t from frame t-1 (NaN where left out), each squared error summed over the
+// channels: the pass's temporal error, the references' own change (a pass of zeros) and the pass's
+// own change (against prevBlank and blank, the references zeroed).
+struct ErrorMaps {
+  std::vector<double> se, seReference, sePass;
+};
+ErrorMaps errorMaps(const test::CyclesReference& prevRef, const Image& prevPass, const test::CyclesReference& ref,
+                    const Image& pass, const test::CyclesReference& prevBlank, const test::CyclesReference& blank) {
+  ErrorMaps m;
+  test::temporalError(prevRef, prevPass, ref, pass, &m.se);
+  const Image zeros(pass.width, pass.height, pass.channels);
+  test::temporalError(prevRef, zeros, ref, zeros, &m.seReference);
+  test::temporalError(prevBlank, prevPass, blank, pass, &m.sePass);
+  return m;
+}
+
 }  // namespace
 
 std::vector<std::vector<uint8_t>> classifyPixels(const std::vector<std::string>& mediumPasses) {
@@ -52,15 +74,11 @@ void printBreakdown(std::ostream& out, const std::string& label, const std::vect
   constexpr int kClasses = 11;
   Pool pools[kClasses];
   double peak = 0;
-  // The references with their values zeroed: the pass's own change along the surface.
-  std::vector<test::CyclesReference> blank = refs;
-  for (test::CyclesReference& r : blank) std::fill(r.cycles.begin(), r.cycles.end(), 0.0);
+  std::vector<test::CyclesReference> blank;
+  for (const test::CyclesReference& r : refs) blank.push_back(blanked(r));
   for (size_t t = 1; t < refs.size(); ++t) {
-    std::vector<double> se, seReference, sePass;
-    test::temporalError(refs[t - 1], passes[t - 1], refs[t], passes[t], &se);
-    const Image zeros(passes[t].width, passes[t].height, passes[t].channels);
-    test::temporalError(refs[t - 1], zeros, refs[t], zeros, &seReference);
-    test::temporalError(blank[t - 1], passes[t - 1], blank[t], passes[t], &sePass);
+    const auto [se, seReference, sePass] =
+        errorMaps(refs[t - 1], passes[t - 1], refs[t], passes[t], blank[t - 1], blank[t]);
     peak += refs[t].peak / double(refs.size() - 1);
     for (size_t i = 0; i < se.size(); ++i) {
       if (std::isnan(se[i])) continue;
@@ -107,14 +125,7 @@ void printBreakdown(std::ostream& out, const std::string& label, const std::vect
 
 void writeTemporalPanels(const std::string& path, const test::CyclesReference& prevRef, const Image& prevPass,
                          const test::CyclesReference& ref, const Image& pass) {
-  std::vector<double> se, seReference, sePass;
-  test::temporalError(prevRef, prevPass, ref, pass, &se);
-  const Image zeros(pass.width, pass.height, pass.channels);
-  test::temporalError(prevRef, zeros, ref, zeros, &seReference);
-  test::CyclesReference blankPrev = prevRef, blank = ref;
-  std::fill(blankPrev.cycles.begin(), blankPrev.cycles.end(), 0.0);
-  std::fill(blank.cycles.begin(), blank.cycles.end(), 0.0);
-  test::temporalError(blankPrev, prevPass, blank, pass, &sePass);
+  const auto [se, seReference, sePass] = errorMaps(prevRef, prevPass, ref, pass, blanked(prevRef), blanked(ref));
   const int w = pass.width, h = pass.height;
   constexpr int kPanels = 5;
   std::vector<unsigned char> rgb(size_t(kPanels * w) * h * 3, 0);
