@@ -296,8 +296,9 @@ inline float8 hit_pixel8(const TraceScene* sc, const ScreenRays8* r, float8 dx, 
   float8 g_in = plane_side8(r, t_in, px, py, pz, pw), g_out = plane_side8(r, t_out, px, py, pz, pw);
   *in_front = sky | (g_out > 0.0f);
   int8 facing = ~sky & (dot_lanes(px, py, pz, dx, dy, dz) < 0.0f);
+  float8 k_in = r->q0w + t_in * r->dqw;  // 1 / w where the stretch starts: a thickness there
   int8 crossing = facing & (g_in > 0.0f) & (g_out <= 0.0f);
-  int8 within = facing & ~crossing & (g_in <= 0.0f) & (-g_in <= r->q0w + t_in * r->dqw);
+  int8 within = facing & ~crossing & (g_in <= 0.0f) & (-g_in <= k_in);
   int8 passed = lanes & facing & ~crossing & ~within;
   *behind |= passed & ~*in_front & *seen;
   *seen |= (lanes & sky) | (passed & *in_front);
@@ -308,7 +309,7 @@ inline float8 hit_pixel8(const TraceScene* sc, const ScreenRays8* r, float8 dx, 
   float8 t_hit = select((float8)(-1.0f), t_in, within);
 #if SSRCL_BACK_KNOWN
   {  // hit_pixel's entry through a known back
-    float8 h_in = g_in + (r->q0w + t_in * r->dqw), h_out = g_out + (r->q0w + t_out * r->dqw);
+    float8 h_in = g_in + k_in, h_out = g_out + (r->q0w + t_out * r->dqw);
     int8 entry = lanes & ~sky & ~facing & (gather8(sc->guess, q) > 0.0f) & (h_in < 0.0f) & (h_out >= 0.0f);
     *entered = entry;
     t_hit = select(t_hit, t_in + (t_out - t_in) * (h_in / (h_in - h_out)), entry);
