@@ -22,7 +22,7 @@
 // pixel by pixel (SSRCL_RAY_BEHIND).
 #define SSRCL_BACK_SKIP (!SSRCL_VIEWS)
 #ifndef SSRCL_TRACE_PACKETS
-#define SSRCL_TRACE_PACKETS 2  // packets of eight rays a round (trace_hiz_packets)
+#define SSRCL_TRACE_PACKETS 3  // packets of eight rays a round (trace_hiz_packets)
 #endif
 #define SSRCL_TRACE_ROUND (8 * SSRCL_TRACE_PACKETS)
 #ifndef SSRCL_TRACE_SCALAR
