@@ -38,6 +38,8 @@ declare -A args=(
   [draft-batch]="--quality draft"  # the batch defaults (--temporal 3, --neighbours 1 reaching 12)
   [medium-batch]="--quality medium"
   [high-batch]="--quality high"
+  [medium-t5-batch]="--quality medium --temporal 5"  # the batch defaults with a wider window
+  [medium-t8-batch]="--quality medium --temporal 8"
   [medium-frameseeds]="--quality medium --temporal 0"  # each frame its own seed, as --temporal's
 )
 configs=("$@")
