@@ -5,6 +5,8 @@
 // view depth (positive in front of the camera); SSRCL_NO_SURFACE marks sky and invalid pixels.
 
 #define SSRCL_NO_SURFACE FLT_MAX
+// Of the depth: a pixel's point this near a neighbour's plane lies on the neighbour's surface.
+#define SSRCL_ON_PLANE 0.01f
 
 // Radiance rule: NaN becomes 0, negatives 0, and values clamp at 1e20 so that weighted sums
 // in later stages cannot overflow float.

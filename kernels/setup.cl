@@ -106,7 +106,6 @@ inline bool surface_depth(float d, float near_plane, float far_plane) {
 // in direction (the largest share of it). A pixel no neighbour explains keeps the mean. The trace
 // keeps the mean (docs/BENCHMARKS.md "Mixed pixels": what the neighbour's normal does there).
 #define SSRCL_FULL_NORMAL 0.9f  // written normals this long (up to its inverse) are one surface's
-#define SSRCL_ON_PLANE 0.01f    // of the depth: a point this near a neighbour's plane lies on it
 
 // The index of the neighbour whose surface mixed pixel (x, y) is on, or -1.
 inline int mixed_pixel_source(const PixelLines* lines, int2 size, int x, int y, float3 nw, float3 p,

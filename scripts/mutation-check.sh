@@ -44,6 +44,7 @@ CREASE="test_glossy_analytic:*Crease*"
 GLOSSY_HITS="test_glossy_hits:*"
 HIDDEN="test_multiview:*HiddenReflectionsComeFromANeighbouringFrameToo*"
 BACK="test_differential:*BackFaceDepth*"
+FOOTPRINT="test_environment:*RippledFloor*"
 
 # name | fast (1 = in the CI subset) | kernel file | exact pattern | replacement | tests
 MUTANTS=(
@@ -69,6 +70,7 @@ MUTANTS=(
   "second_ray_finds_nothing|0|trace.cl|if (t2 < 0.0f) return (float4)(0.0f, 0.0f, 0.0f, -1.0f);|return (float4)(0.0f, 0.0f, 0.0f, -1.0f);|$GLOSSY_HITS"
   "clear_ignores_hidden|0|trace.cl|(t < 0.0f && !sc->hidden &&|(t < 0.0f && !sc->behind &&|$HIDDEN"
   "back_entry_off|0|trace.cl|if (h_in < 0.0f && h_out >= 0.0f) {|if (false) {|$BACK"
+  "fill_point_sample|0|environment.cl|#define SSRCL_FILL_FOOTPRINT 0.21f|#define SSRCL_FILL_FOOTPRINT 0.0f|$FOOTPRINT"
 )
 
 echo "== building the test executables against mutable kernels in $BUILD"
@@ -79,7 +81,7 @@ targets() {
   local t
   for t in $1; do echo "--target ${t%%:*}"; done | sort -u
 }
-ALL_TESTS="$MIRROR $DIFFERENTIAL $GLOSSY $HZB $EDGE $SAMPLER $HIGH $DRAFT $LINEAR_MAPPING $THICKNESS $CREASE $GLOSSY_HITS"
+ALL_TESTS="$MIRROR $DIFFERENTIAL $GLOSSY $HZB $EDGE $SAMPLER $HIGH $DRAFT $LINEAR_MAPPING $THICKNESS $CREASE $GLOSSY_HITS $FOOTPRINT"
 # shellcheck disable=SC2046
 cmake --build "$BUILD" -j"$(nproc)" $(targets "$ALL_TESTS") >"$LOG/build.log" || {
   tail -30 "$LOG/build.log"; echo "mutation-check: the unmutated build failed" >&2; exit 2; }

@@ -184,6 +184,44 @@ TEST(Environment, MixedEdgePixelFillsAlongTheSurfaceItsDepthIsOn) {
   EXPECT_LT(worstOff, 2e-3) << "off every neighbour's plane: the averaged normal's";
 }
 
+// A mirror floor whose normal alternates from column to column (ripples a pixel wide): the fill is
+// the mean of the environment along four normals of the pixel's footprint, at (+-0.21, +-0.21) px,
+// each bilinear between the pixel centres around it (Blender's pixel filter's spread, as Cycles'
+// pixel averages its footprint), not the point sample along the pixel's own normal. The truth is
+// that rule in double precision on the analytic environment; the point sample is far off it.
+TEST(Environment, RippledFloorFillsWithItsFootprintsMean) {
+  const Radiance sky = [](const dvec3& d) { return dvec3(std::exp(3.0 * d.x), std::exp(2.0 * d.y), 1.0 + d.z); };
+  const ssrcl::EnvironmentMap env = ssrcl::prefilterEnvironment(equirect(2048, sky));
+  FloorView view = floorView(0.0f);
+  const int w = view.camera.width, h = view.camera.height;
+  const auto normalAt = [](int x) { return glm::normalize(dvec3(x % 2 ? 0.1 : -0.1, 0.0, 1.0)); };
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      for (int c = 0; c < 3; ++c) view.gbuffer.normal.at(x, y, c) = float(normalAt(x)[c]);
+  const ssrcl::Image out = trace(view, env);
+  const double spread = 0.21;
+  double worst = 0, pointSample = 0;
+  for (int y = 1; y < h - 1; ++y)
+    for (int x = 1; x < w - 1; ++x) {
+      const dvec3 d = ssrcl::test::primaryRay(view.camera, x + 0.5, y + 0.5).direction;
+      dvec3 mean(0.0);
+      for (int k = 0; k < 4; ++k) {
+        // Bilinear between the centres around (x + ox, y +- spread): the normal depends on x alone.
+        const double ox = (k & 1) ? spread : -spread, fx = ox > 0 ? ox : 1 + ox;
+        const int x0 = ox > 0 ? x : x - 1;
+        const dvec3 n = glm::normalize((1 - fx) * normalAt(x0) + fx * normalAt(x0 + 1));
+        mean += 0.25 * sky(d - 2 * glm::dot(d, n) * n);
+      }
+      const dvec3 own = sky(d - 2 * glm::dot(d, normalAt(x)) * normalAt(x));
+      for (int c = 0; c < 3; ++c) {
+        worst = std::max(worst, std::abs(out.data[4 * (y * w + x) + c] - mean[c]) / mean[c]);
+        pointSample = std::max(pointSample, std::abs(own[c] - mean[c]) / mean[c]);
+      }
+    }
+  EXPECT_GT(pointSample, 0.05) << "the point sample must be told apart from the footprint's mean";
+  EXPECT_LT(worst, 0.01) << "relative to the footprint's mean";
+}
+
 TEST(Environment, RoughLobesAverageTheEnvironmentOverTheGgxLobe) {
   const ssrcl::EnvironmentMap env = ssrcl::prefilterEnvironment(equirect(512, linearSky));
   // Roughness 0.5 and 1.0 fall on prefiltered levels; 0.3 between two.
