@@ -288,7 +288,7 @@ inline float8 plane_side8(const ScreenRays8* r, float8 t, float8 px, float8 py, 
 // hit_pixel per lane, for the lanes in `lanes` (the others' results are not used).
 inline float8 hit_pixel8(const TraceScene* sc, const ScreenRays8* r, float8 dx, float8 dy, float8 dz, int8 cx,
                          int8 cy, float8 t_in, float8 t_out, int8 lanes, int8* in_front, int8* seen, int8* behind,
-                         int8* thick, int8* hidden, int8* past, float8* g_past, int8* entered) {
+                         int8* thick, int8* hidden, int8* past, float8* g_past, int8* entered, float8* guess) {
   int8 q = clamp(cy, 0, sc->size.y - 1) * sc->size.x + clamp(cx, 0, sc->size.x - 1);
   const RecordLanes plane = scattered_record_lanes(sc->planes, q);
   const float8 px = plane.x, py = plane.y, pz = plane.z, pw = plane.w;
@@ -309,8 +309,9 @@ inline float8 hit_pixel8(const TraceScene* sc, const ScreenRays8* r, float8 dx, 
   float8 t_hit = select((float8)(-1.0f), t_in, within);
 #if SSRCL_BACK_KNOWN
   {  // hit_pixel's entry through a known back
+    *guess = gather8(sc->guess, q);
     float8 h_in = g_in + k_in, h_out = g_out + (r->q0w + t_out * r->dqw);
-    int8 entry = lanes & ~sky & ~facing & (gather8(sc->guess, q) > 0.0f) & (h_in < 0.0f) & (h_out >= 0.0f);
+    int8 entry = lanes & ~sky & ~facing & (*guess > 0.0f) & (h_in < 0.0f) & (h_out >= 0.0f);
     *entered = entry;
     t_hit = select(t_hit, t_in + (t_out - t_in) * (h_in / (h_in - h_out)), entry);
   }
@@ -319,13 +320,12 @@ inline float8 hit_pixel8(const TraceScene* sc, const ScreenRays8* r, float8 dx, 
 }
 
 // hit_pixel's record of the first surface a ray passed behind within its guess, per lane: the lanes
-// `now` passing behind their pixel's surface (by g, hit_pixel8's g_in) that have none yet.
-inline void note_past_back8(const TraceScene* sc, const ScreenRays8* r, int8 now, float8 g, int8 cx, int8 cy,
-                            float8 t, int8* past, float8* past_t, int8* past_x, int8* past_y) {
+// `now` passing behind their pixel's surface (by g, hit_pixel8's g_in; guess, its pixel's guess)
+// that have none yet.
+inline void note_past_back8(const ScreenRays8* r, int8 now, float8 g, float8 guess, int8 cx, int8 cy, float8 t,
+                            int8* past, float8* past_t, int8* past_x, int8* past_y) {
   now &= ~*past;
-  if (!any_lane(now)) return;
-  int8 q = clamp(cy, 0, sc->size.y - 1) * sc->size.x + clamp(cx, 0, sc->size.x - 1);
-  now &= -g <= gather8(sc->guess, q) * (r->q0w + t * r->dqw);
+  now &= -g <= guess * (r->q0w + t * r->dqw);
   *past |= now;
   *past_t = select(*past_t, t, now);
   *past_x = select(*past_x, cx, now);
@@ -385,11 +385,11 @@ inline bool packet_step(Packet8* p, const TraceScene* sc) {
   int8 in_front = 0, hit = 0;
   if (any_lane(fine)) {
     int8 past_now, entered_now = 0;
-    float8 g_past;
+    float8 g_past, guess;
     float8 t_pixel = hit_pixel8(sc, &p->r, p->dx, p->dy, p->dz, p->cx, p->cy, p->t, fmin(t_exit, 1.0f), fine, &in_front,
-                                &p->seen, &p->behind, &p->thick, &p->hidden, &past_now, &g_past, &entered_now);
+                                &p->seen, &p->behind, &p->thick, &p->hidden, &past_now, &g_past, &entered_now, &guess);
 #if SSRCL_BACK_KNOWN
-    note_past_back8(sc, &p->r, past_now, g_past, p->cx, p->cy, p->t, &p->past, &p->past_t, &p->past_x, &p->past_y);
+    note_past_back8(&p->r, past_now, g_past, guess, p->cx, p->cy, p->t, &p->past, &p->past_t, &p->past_x, &p->past_y);
 #endif
     hit = fine & (t_pixel >= 0.0f);
     p->entered |= hit & entered_now;
@@ -898,20 +898,17 @@ __kernel void trace_rays(TraceParams params, __global const float* hzb, __global
       int q = cell.y * size.x + cell.x;
       // A prefiltered hit is looked up once the batch's hits are counted (hit_prefilter.cl): recorded
       // as the screen position and the mip of its footprint.
-      bool prefiltered = prefiltered_hit(sc, q, mirror ? 0.0f : alpha, params.cone_scale);
-#if SSRCL_BACK_KNOWN
-      // A hit on a known back (hit_pixel) is on a face the screen does not show, which its light
-      // seldom reaches (the underside of a seat, a plank's): black. Measured against the model's
-      // guess and against leaving the ray a miss: docs/BENCHMARKS.md "Back-face depth".
-      if (sc->entered) prefiltered = false;
-#endif
+      // A hit on a known back (hit_pixel, SSRCL_BACK_KNOWN) is on a face the screen does not show,
+      // which its light seldom reaches (the underside of a seat, a plank's): black, neither looked up
+      // nor bounced. Measured against the model's guess and against leaving the ray a miss:
+      // docs/BENCHMARKS.md "Back-face depth".
+      const bool black = sc->entered;
+      bool prefiltered = !black && prefiltered_hit(sc, q, mirror ? 0.0f : alpha, params.cone_scale);
       hit_radiance[k] =
-          prefiltered
+          black ? (float4)(0.0f)
+          : prefiltered
               ? (float4)(s, -1.0f - hit_mip_level(sc, proj, &ray, t, length(hit - p), alpha, params.cone_scale), 0.0f)
               : color_pyramid[q];
-#if SSRCL_BACK_KNOWN
-      if (sc->entered) hit_radiance[k].xyz = (float3)(0.0f);
-#endif
       hit_point[k] = hit;
       hit_screen[k] = s;
       // A hit on a glossy pixel: its screen colour is what it reflects toward the camera, not toward
@@ -923,11 +920,8 @@ __kernel void trace_rays(TraceParams params, __global const float* hzb, __global
       // one second ray shows there as noise (mirror sample: floor within 25% of Cycles 0.90 -> 0.74).
       float4 nq = normals[q];
       bool bounce = !mirror || nq.w <= mirror_roughness;
-      hit_glossy[k] =
-          !prefiltered && params.has_base && nq.w < params.glossy_hit_roughness && (SSRCL_MATERIAL_HITS || bounce);
-#if SSRCL_BACK_KNOWN
-      if (sc->entered) hit_glossy[k] = 0;
-#endif
+      hit_glossy[k] = !black && !prefiltered && params.has_base && nq.w < params.glossy_hit_roughness &&
+                      (SSRCL_MATERIAL_HITS || bounce);
       if (hit_glossy[k] && bounce)
         second.live[k] = bounce_ray(proj, size, near_plane, far_plane, mirror_roughness, hit, dir, nq,
                                     fmax(roughness_to_alpha(nq.w, SSRCL_ROUGHNESS_MAPPING), 1e-4f), q, sample, seed,
