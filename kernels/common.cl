@@ -8,6 +8,9 @@
 // Of the depth: a pixel's point this near a neighbour's plane lies on the neighbour's surface.
 #define SSRCL_ON_PLANE 0.01f
 
+// Whether point p lies on the plane through q with normal n, within SSRCL_ON_PLANE of `depth`.
+inline bool on_plane(float3 p, float3 q, float3 n, float depth) { return fabs(dot(p - q, n)) <= SSRCL_ON_PLANE * depth; }
+
 // Radiance rule: NaN becomes 0, negatives 0, and values clamp at 1e20 so that weighted sums
 // in later stages cannot overflow float.
 #define SSRCL_MAX_RADIANCE 1e20f

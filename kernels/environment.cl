@@ -47,8 +47,8 @@ inline bool surface_normals(__global const float4* positions, __global const flo
     if (q.x >= 0 && q.y >= 0 && q.x < size.x && q.y < size.y) {
       const int j = q.y * size.x + q.x;
       const float4 pj = positions[j], nj = normals[j];
-      if (pj.w != SSRCL_NO_SURFACE && dot(nj.xyz, n) >= SSRCL_SAME_SURFACE_COS &&
-          fabs(dot(pj.xyz - p.xyz, n)) <= SSRCL_ON_PLANE * p.w && fabs(dot(p.xyz - pj.xyz, nj.xyz)) <= SSRCL_ON_PLANE * p.w)
+      if (pj.w != SSRCL_NO_SURFACE && dot(nj.xyz, n) >= SSRCL_SAME_SURFACE_COS && on_plane(pj.xyz, p.xyz, n, p.w) &&
+          on_plane(p.xyz, pj.xyz, nj.xyz, p.w))
         nq = nj.xyz;
     }
     around[t] = nq;

@@ -130,7 +130,7 @@ inline int mixed_pixel_source(const PixelLines* lines, int2 size, int x, int y, 
       float3 v;
       float3 origin = pixel_line(lines, (float2)((float)qx + 0.5f, (float)qy + 0.5f), &v);
       float3 pj = origin + (dj + origin.z) * (v * (-1.0f / v.z));
-      if (!(fabs(dot(p - pj, mat3_mul(normal_matrix, nj))) <= SSRCL_ON_PLANE * -p.z)) continue;
+      if (!on_plane(p, pj, mat3_mul(normal_matrix, nj), -p.z)) continue;
       float share = dot(mean, nj);
       if (share > best_share) {
         best = j;
