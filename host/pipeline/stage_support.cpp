@@ -5,6 +5,7 @@
 #include <limits>
 #include <sstream>
 
+#include "host_backed_buffer.hpp"
 #include "ssrcl/error.hpp"
 
 namespace ssrcl::detail {
@@ -53,7 +54,7 @@ bool DeviceBuffers::allocate(Device::Impl& device, const std::string& what) {
   for (const Planned& b : planned_) {
     auto& held = allocated_[b.buffer];
     if (held == std::pair{b.bytes, b.flags} && (*b.buffer)()) continue;
-    *b.buffer = cl::Buffer(device.context, b.flags, b.bytes);
+    *b.buffer = newDeviceBuffer(device, b.flags, b.bytes);
     held = {b.bytes, b.flags};
     changed = true;
   }
