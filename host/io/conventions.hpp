@@ -35,7 +35,7 @@ Image planarFromPositions(const Image& positions, const Camera& camera);
 
 // A normal of `space` in OpenGL eye space (x right, y up, -z forward), the check's common ground.
 glm::dvec3 normalToEye(const glm::dvec3& normal, NormalSpace space, const glm::dmat3& worldToEye);
-// World-space normals from normals of `space`; zero and non-finite normals stay what they are.
-Image worldNormals(const Image& normals, NormalSpace space, const Camera& camera);
+// Normals of `space` turned into world space, in place; zero and non-finite normals stay what they are.
+void toWorldNormals(Image& normals, NormalSpace space, const Camera& camera);
 
 }  // namespace ssrcl::detail

@@ -165,29 +165,33 @@ InputCheckReport checkInputConventions(const GBuffer& g, const GBufferSource& so
   const int stride = std::max(1, int(std::ceil(std::sqrt(double(pixels) / kMaxSamples))));
 
   // Depth readings: the pass as planar and as radial (positions have one reading).
-  std::vector<std::pair<std::string, Image>> depths;
+  // The pass itself is read where it is (no copy of a full-size image); the reading derived from it here.
+  Image derived;
+  std::vector<std::pair<std::string, const Image*>> depths;
   if (fromPositions) {
-    depths.emplace_back("position", detail::planarFromPositions(g.position, camera));
+    derived = detail::planarFromPositions(g.position, camera);
+    depths.emplace_back("position", &derived);
   } else {
-    depths.emplace_back("planar", g.depth);
-    depths.emplace_back("radial", radialOnGrid(g.depth, camera, stride));
+    derived = radialOnGrid(g.depth, camera, stride);
+    depths.emplace_back("planar", &g.depth);
+    depths.emplace_back("radial", &derived);
   }
   const std::string declaredDepth = fromPositions ? "position" : depthKindName(source.depthKind);
 
   std::vector<Hypothesis> hypotheses;
   for (const auto& [name, planar] : depths) {
     for (NormalSpace space : {NormalSpace::World, NormalSpace::Camera, NormalSpace::CameraGL, NormalSpace::CameraCV})
-      hypotheses.push_back({name, normalSpaceName(space), &planar, space, -1});
+      hypotheses.push_back({name, normalSpaceName(space), planar, space, -1});
     // The declared space with one axis flipped: a pass no option converts.
     for (int axis = 0; axis < 3; ++axis)
       hypotheses.push_back({name, std::string(normalSpaceName(source.normalSpace)) + " with " + "xyz"[axis] +
                                       " negated",
-                            &planar, source.normalSpace, axis});
+                            planar, source.normalSpace, axis});
   }
 
   const glm::dmat3 worldToEye(camera.view);
   std::vector<std::vector<glm::dvec3>> geometric;
-  for (const auto& depth : depths) geometric.push_back(geometricNormals(depth.second, camera, stride));
+  for (const auto& depth : depths) geometric.push_back(geometricNormals(*depth.second, camera, stride));
 
   // Per sample and hypothesis: the pass normal in eye space (0 if unusable) and the depth-derived one.
   const auto passNormal = [&](const Hypothesis& hyp, int x, int y) {
@@ -201,7 +205,7 @@ InputCheckReport checkInputConventions(const GBuffer& g, const GBufferSource& so
     return std::acos(std::clamp(glm::dot(a, b), -1.0, 1.0)) * 180.0 / M_PI;
   };
   const auto geometricOf = [&](const Hypothesis& hyp) -> const std::vector<glm::dvec3>& {
-    return geometric[hyp.planar == &depths[0].second ? 0 : 1];
+    return geometric[hyp.planar == depths[0].second ? 0 : 1];
   };
 
   size_t declared = 0;

@@ -32,7 +32,7 @@ void applyInputConventions(GBuffer& g, const GBufferSource& source, const Camera
     g.depth = detail::planarFromPositions(g.position, camera);
   else if (source.depthKind == DepthKind::Radial)
     g.depth = detail::planarFromRadial(g.depth, camera);
-  g.normal = detail::worldNormals(g.normal, source.normalSpace, camera);
+  detail::toWorldNormals(g.normal, source.normalSpace, camera);
   detail::prepareBackDepth(g, source, camera);
 }
 

@@ -22,18 +22,17 @@ glm::dvec3 normalToEye(const glm::dvec3& normal, NormalSpace space, const glm::d
 }
 
 // Normals go from eye to world by the inverse transpose of eye-to-world, i.e. the transpose of
-// the view's linear part: exact for a view with scale or shear too.
-Image worldNormals(const Image& normals, NormalSpace space, const Camera& camera) {
-  if (space == NormalSpace::World) return normals;
+// the view's linear part: exact for a view with scale or shear too. In place: world-space passes
+// (Blender's) are left as read, with no copy of the frame's largest input.
+void toWorldNormals(Image& normals, NormalSpace space, const Camera& camera) {
+  if (space == NormalSpace::World) return;
   const glm::dmat3 eyeToWorld = glm::transpose(glm::dmat3(camera.view));
-  Image world = normals;
   for (int y = 0; y < normals.height; ++y)
     for (int x = 0; x < normals.width; ++x) {
       const glm::dvec3 n(normals.at(x, y, 0), normals.at(x, y, 1), normals.at(x, y, 2));
       const glm::dvec3 w = eyeToWorld * normalToEye(n, space, glm::dmat3(1.0));
-      for (int c = 0; c < 3; ++c) world.at(x, y, c) = float(w[c]);
+      for (int c = 0; c < 3; ++c) normals.at(x, y, c) = float(w[c]);
     }
-  return world;
 }
 
 }  // namespace ssrcl::detail
