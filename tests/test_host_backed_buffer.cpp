@@ -1,9 +1,12 @@
 // Device buffers on a CPU device (host/pipeline/host_backed_buffer.hpp): large ones live in memory
 // the library allocated on 2 MiB boundaries (transparent huge pages), small ones where the driver
-// puts them; both hold what is written to them, and a buffer's memory outlives copies of it.
+// puts them; both hold what is written to them, and a buffer's memory outlives copies of it. A
+// frame's input image is read where it lies (no copy) when it is aligned as the device's buffers.
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <cstdlib>
+#include <memory>
 #include <numeric>
 #include <vector>
 
@@ -16,8 +19,12 @@ using namespace ssrcl::detail;
 
 ssrcl::Device::Impl& device() { return DeviceAccess::impl(ssrcl::test::sharedTestDevice()); }
 
-bool hostShared() {
-  return !device().info.isGpu && device().device.getInfo<CL_DEVICE_HOST_UNIFIED_MEMORY>();
+bool hostShared() { return sharesHostMemory(device()); }
+
+std::vector<float> readBack(const cl::Buffer& buffer, size_t count) {
+  std::vector<float> out(count, -1.0f);
+  device().queue.enqueueReadBuffer(buffer, CL_TRUE, 0, count * sizeof(float), out.data());
+  return out;
 }
 
 void roundTrip(const cl::Buffer& buffer, size_t count) {
@@ -55,6 +62,46 @@ TEST(HostBackedBuffer, MemoryLivesAsLongAsAnyCopy) {
     copy = first;
   }
   roundTrip(copy, count);  // under the sanitizers a freed host pointer would be a use after free
+}
+
+TEST(HostInput, AlignedPixelsAreReadWhereTheyLie) {
+  const size_t count = (size_t(3) << 20) / sizeof(float), bytes = count * sizeof(float);
+  const std::unique_ptr<float, decltype(&std::free)> pixels(static_cast<float*>(std::aligned_alloc(4096, bytes)),
+                                                            &std::free);
+  std::iota(pixels.get(), pixels.get() + count, 0.25f);
+  const std::vector<float> expected(pixels.get(), pixels.get() + count);
+  DeviceBuffers buffers;
+  HostInput input;
+  input.plan(device(), buffers, bytes);
+  buffers.allocate(device(), "test");
+  StageEvents events;
+  const cl::Buffer& buffer = input.put(device().queue, pixels.get(), bytes, events);
+  EXPECT_EQ(readBack(buffer, count), expected);
+  if (hostShared()) {
+    EXPECT_EQ(buffer.getInfo<CL_MEM_HOST_PTR>(), static_cast<void*>(pixels.get()));  // no copy
+    EXPECT_LT(input.own().getInfo<CL_MEM_SIZE>(), bytes);  // nor a buffer of its own
+    EXPECT_TRUE(events.empty());
+  } else {
+    EXPECT_EQ(buffer(), input.own()());
+  }
+}
+
+TEST(HostInput, UnalignedPixelsAreCopied) {
+  const size_t count = 1000, bytes = count * sizeof(float);
+  std::vector<float> storage(count + 1);
+  float* pixels = storage.data() + 1;  // 4 bytes off any buffer alignment a device asks
+  std::iota(pixels, pixels + count, 3.0f);
+  const std::vector<float> expected(pixels, pixels + count);
+  DeviceBuffers buffers;
+  HostInput input;
+  input.plan(device(), buffers, bytes);
+  buffers.allocate(device(), "test");
+  StageEvents events;
+  const cl::Buffer& buffer = input.put(device().queue, pixels, bytes, events);
+  if (hostShared()) std::fill(pixels, pixels + count, 0.0f);  // the copy is the frame's: the caller may reuse its memory
+  EXPECT_EQ(readBack(buffer, count), expected);
+  EXPECT_NE(buffer.getInfo<CL_MEM_HOST_PTR>(), static_cast<void*>(pixels));
+  EXPECT_EQ(input.put(device().queue, nullptr, bytes, events)(), input.own()());  // no image: its own, unwritten
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 #include "host_backed_buffer.hpp"
 
+#include <cstdint>
 #include <cstdlib>
 #if defined(__linux__)
 #include <sys/mman.h>
@@ -14,12 +15,16 @@ void CL_CALLBACK freeHostMemory(cl_mem, void* memory) { std::free(memory); }
 
 }  // namespace
 
+bool sharesHostMemory(Device::Impl& device) {
+  return !device.info.isGpu && device.device.getInfo<CL_DEVICE_HOST_UNIFIED_MEMORY>();
+}
+
 cl::Buffer newDeviceBuffer(Device::Impl& device, cl_mem_flags flags, size_t bytes) {
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
   // Each first touch of a 4 KiB page is a fault: a 1080p frame's buffers took some 190,000, 13%
   // of the process's CPU on a virtual machine (perf: exc_page_fault under the kernels, the
   // driver's fills and copies). One fault a 2 MiB page instead: docs/BENCHMARKS.md "Huge pages".
-  if (!device.info.isGpu && bytes >= hugePage && device.device.getInfo<CL_DEVICE_HOST_UNIFIED_MEMORY>()) {
+  if (bytes >= hugePage && sharesHostMemory(device)) {
     const size_t rounded = (bytes + hugePage - 1) / hugePage * hugePage;
     if (void* memory = std::aligned_alloc(hugePage, rounded)) {
       madvise(memory, rounded, MADV_HUGEPAGE);  // advice: where refused, plain pages serve
@@ -33,6 +38,27 @@ cl::Buffer newDeviceBuffer(Device::Impl& device, cl_mem_flags flags, size_t byte
   }
 #endif
   return cl::Buffer(device.context, flags, bytes);
+}
+
+void HostInput::plan(Device::Impl& device, DeviceBuffers& buffers, size_t bytes) {
+  context_ = device.context;
+  alignment_ = sharesHostMemory(device) ? device.device.getInfo<CL_DEVICE_MEM_BASE_ADDR_ALIGN>() / 8 : 0;
+  buffers.add(own_, alignment_ ? 0 : bytes, CL_MEM_READ_ONLY);
+}
+
+const cl::Buffer& HostInput::put(cl::CommandQueue& q, const void* data, size_t bytes, StageEvents& events) {
+  frame_ = cl::Buffer();
+  if (!data) return own_;
+  if (!alignment_) {
+    q.enqueueWriteBuffer(own_, CL_FALSE, 0, bytes, data, nullptr, newEvent(events, "upload"));
+    return own_;
+  }
+  // Pixels off the device's alignment (a caller's own allocation) are copied once, into memory
+  // the driver allocates for this frame.
+  const bool aligned = reinterpret_cast<std::uintptr_t>(data) % alignment_ == 0;
+  frame_ = cl::Buffer(context_, CL_MEM_READ_ONLY | (aligned ? CL_MEM_USE_HOST_PTR : CL_MEM_COPY_HOST_PTR), bytes,
+                      const_cast<void*>(data));  // read only: the kernels never write it
+  return frame_;
 }
 
 }  // namespace ssrcl::detail

@@ -9,6 +9,7 @@ const StageAccess SetupStage::access{"setup",
                                       Role::RayList, Role::TileList, Role::DepthPyramid, Role::ColorPyramid}};
 
 void SetupStage::configure(Device::Impl& device) {
+  device_ = &device;
   kernel_ = cl::Kernel(
       device.program({"ssrcl_shared.h", "common.cl", "color_lookup.cl", "surface_plane.cl", "setup.cl"}), "setup");
 }
@@ -19,10 +20,10 @@ void SetupStage::plan(FrameResources& resources, DeviceBuffers& buffers, const F
   colorChannels_ = colorChannels;
   fillNormals_ = fillNormals;
   const size_t pixels = frame.pixels();
-  buffers.add(colorIn_, pixels * colorChannels * sizeof(float), CL_MEM_READ_ONLY);
-  buffers.add(depthIn_, pixels * sizeof(float), CL_MEM_READ_ONLY);
-  buffers.add(normalIn_, pixels * 3 * sizeof(float), CL_MEM_READ_ONLY);
-  buffers.add(roughnessIn_, roughnessImage ? pixels * sizeof(float) : 0, CL_MEM_READ_ONLY);
+  colorIn_.plan(*device_, buffers, pixels * colorChannels * sizeof(float));
+  depthIn_.plan(*device_, buffers, pixels * sizeof(float));
+  normalIn_.plan(*device_, buffers, pixels * 3 * sizeof(float));
+  roughnessIn_.plan(*device_, buffers, roughnessImage ? pixels * sizeof(float) : 0);
   resources.plan(access, buffers, Role::Positions, pixels * sizeof(cl_float4));
   resources.plan(access, buffers, Role::Normals, pixels * sizeof(cl_float4));
   resources.plan(access, buffers, Role::FillNormals, fillNormals ? pixels * sizeof(cl_float4) : 0);
@@ -40,7 +41,7 @@ void SetupStage::bind(const FrameResources& resources) {
   bindArgs(kernel_, 1,
            "color_in, depth_in, normal_in, roughness_in, position_out, hzb_out, normal_out, color_out, pixel_rays, "
            "ray_list, tile_list, ray_count, plane_out, fill_normal_out",
-           colorIn_, depthIn_, normalIn_, roughnessIn_, out(Role::Positions), out(Role::DepthPyramid),
+           colorIn_.own(), depthIn_.own(), normalIn_.own(), roughnessIn_.own(), out(Role::Positions), out(Role::DepthPyramid),
            out(Role::Normals), out(Role::ColorPyramid), out(Role::PixelRays), out(Role::RayList), out(Role::TileList),
            counts_, out(Role::Planes), out(Role::FillNormals));
 }
@@ -62,16 +63,12 @@ SetupParams SetupStage::params(const FrameConstants& frame, const TraceSettings&
 
 void SetupStage::enqueue(cl::CommandQueue& q, const Inputs& in, const SetupParams& params, StageEvents& events) {
   const size_t pixels = frame_.pixels();
-  q.enqueueWriteBuffer(colorIn_, CL_FALSE, 0, pixels * colorChannels_ * sizeof(float), in.color, nullptr,
-                       newEvent(events, "upload"));
-  q.enqueueWriteBuffer(depthIn_, CL_FALSE, 0, pixels * sizeof(float), in.depth, nullptr,
-                       newEvent(events, "upload"));
-  q.enqueueWriteBuffer(normalIn_, CL_FALSE, 0, pixels * 3 * sizeof(float), in.normal, nullptr,
-                       newEvent(events, "upload"));
+  // Arguments 1-4 (bind): this frame's passes.
+  kernel_.setArg(1, colorIn_.put(q, in.color, pixels * colorChannels_ * sizeof(float), events));
+  kernel_.setArg(2, depthIn_.put(q, in.depth, pixels * sizeof(float), events));
+  kernel_.setArg(3, normalIn_.put(q, in.normal, pixels * 3 * sizeof(float), events));
+  kernel_.setArg(4, roughnessIn_.put(q, in.roughness, pixels * sizeof(float), events));
   q.enqueueFillBuffer(counts_, cl_int(0), 0, SSRCL_COUNTERS * sizeof(cl_int), nullptr, newEvent(events, "upload"));
-  if (in.roughness)
-    q.enqueueWriteBuffer(roughnessIn_, CL_FALSE, 0, pixels * sizeof(float), in.roughness, nullptr,
-                         newEvent(events, "upload"));
   SetupParams planned = params;
   planned.fill_normals = fillNormals_;
   kernel_.setArg(0, planned);

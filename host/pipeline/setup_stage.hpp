@@ -3,6 +3,7 @@
 // points and normals, the surface planes the trace tests, level 0 of the HZB and colour pyramids,
 // ray counts and the lists of pixels and tiles to work on.
 #include "frame_resources.hpp"
+#include "host_backed_buffer.hpp"
 #include "ssrcl/pipeline.hpp"
 
 namespace ssrcl::detail {
@@ -35,8 +36,10 @@ class SetupStage {
   FrameShape frame_;
   int colorChannels_ = 0;
   bool fillNormals_ = false;
+  Device::Impl* device_ = nullptr;
   cl::Kernel kernel_;
-  cl::Buffer colorIn_, depthIn_, normalIn_, roughnessIn_, counts_;
+  HostInput colorIn_, depthIn_, normalIn_, roughnessIn_;
+  cl::Buffer counts_;
 };
 
 }  // namespace ssrcl::detail

@@ -5,6 +5,7 @@ namespace ssrcl::detail {
 const StageAccess ThicknessStage::access{"thickness", {Role::Positions}, {Role::Planes, Role::BackGuess}};
 
 void ThicknessStage::configure(Device::Impl& device, const TraceSettings& s, bool backDepth) {
+  device_ = &device;
   adaptive_ = s.thicknessModel == ThicknessModel::Adaptive;
   backDepth_ = backDepth;
   if (!adaptive_ && !backDepth_) return;
@@ -16,7 +17,7 @@ void ThicknessStage::configure(Device::Impl& device, const TraceSettings& s, boo
 void ThicknessStage::plan(FrameResources& resources, DeviceBuffers& buffers, const FrameShape& frame) {
   frame_ = frame;
   buffers.add(rowRuns_, adaptive_ ? frame.pixels() * sizeof(cl_float2) : 0);
-  buffers.add(back_, backDepth_ ? frame.pixels() * sizeof(float) : 0, CL_MEM_READ_ONLY);
+  back_.plan(*device_, buffers, backDepth_ ? frame.pixels() * sizeof(float) : 0);
   resources.plan(access, buffers, Role::BackGuess, backDepth_ ? frame.pixels() * sizeof(float) : 0);
 }
 
@@ -25,7 +26,7 @@ void ThicknessStage::bind(const FrameResources& resources) {
     bindArgs(kernel_, 1, "positions, row, planes", resources.read(access, Role::Positions), rowRuns_,
              resources.write(access, Role::Planes));
   if (backDepth_)
-    bindArgs(known_, 1, "positions, back, planes, guess", resources.read(access, Role::Positions), back_,
+    bindArgs(known_, 1, "positions, back, planes, guess", resources.read(access, Role::Positions), back_.own(),
              resources.write(access, Role::Planes), resources.write(access, Role::BackGuess));
 }
 
@@ -39,8 +40,7 @@ void ThicknessStage::enqueue(cl::CommandQueue& q, const FrameConstants& frame, c
                            cl::NDRange(16), nullptr, newEvent(events, "thickness"));
   }
   if (!backDepth_) return;
-  q.enqueueWriteBuffer(back_, CL_FALSE, 0, frame_.pixels() * sizeof(float), backDepth, nullptr,
-                       newEvent(events, "upload"));
+  known_.setArg(2, back_.put(q, backDepth, frame_.pixels() * sizeof(float), events));  // "back" (bind)
   known_.setArg(0, p);
   q.enqueueNDRangeKernel(known_, cl::NullRange, cl::NDRange(roundUp(frame_.pixels(), 64)), cl::NDRange(64),
                          nullptr, newEvent(events, "thickness"));

@@ -3,6 +3,7 @@
 // model's, from the visible extent of each pixel's surface along its row and column (with
 // ThicknessModel::Adaptive), then the exact one where a back-face depth pass knows it.
 #include "frame_resources.hpp"
+#include "host_backed_buffer.hpp"
 
 namespace ssrcl::detail {
 
@@ -19,11 +20,12 @@ class ThicknessStage {
                bool orthographic, StageEvents& events);
 
  private:
+  Device::Impl* device_ = nullptr;
   bool adaptive_ = false, backDepth_ = false;
   FrameShape frame_;
   cl::Kernel kernel_, known_;
   cl::Buffer rowRuns_;  // per pixel: its row run's length and chord
-  cl::Buffer back_;     // per pixel: the back-face depth
+  HostInput back_;      // per pixel: the back-face depth
 };
 
 }  // namespace ssrcl::detail

@@ -47,6 +47,7 @@ const StageAccess TraceStage::access{"trace",
 
 void TraceStage::configure(Device::Impl& device, const TraceSettings& s, bool hasBase, bool materials, bool views,
                            bool backDepth) {
+  device_ = &device;
   hasBase_ = hasBase;
   materials_ = hasBase && materials;
   counting_ = s.countWork;
@@ -71,9 +72,9 @@ void TraceStage::plan(FrameResources& resources, DeviceBuffers& buffers, const F
   resources.plan(access, buffers, Role::RayHits, perSample * batch_);
   resources.plan(access, buffers, Role::RayRadiance, perSample * batch_);
   resources.plan(access, buffers, Role::RayStates, views_ ? pixels * batch_ : 0);
-  buffers.add(baseIn_, hasBase_ ? pixels * 3 * sizeof(float) : 0, CL_MEM_READ_ONLY);
-  buffers.add(specularIn_, hasBase_ ? pixels * 3 * sizeof(float) : 0, CL_MEM_READ_ONLY);
-  buffers.add(f0In_, materials_ ? pixels * 3 * sizeof(float) : 0, CL_MEM_READ_ONLY);
+  baseIn_.plan(*device_, buffers, hasBase_ ? pixels * 3 * sizeof(float) : 0);
+  specularIn_.plan(*device_, buffers, hasBase_ ? pixels * 3 * sizeof(float) : 0);
+  f0In_.plan(*device_, buffers, materials_ ? pixels * 3 * sizeof(float) : 0);
   buffers.add(albedoTable_, materials_ ? kAlbedoEntries * sizeof(cl_float2) : 0, CL_MEM_READ_ONLY);
   buffers.add(workCounters_, counting_ ? (SSRCL_FETCH_SLOTS + SSRCL_HISTOGRAM_BINS) * sizeof(cl_int) : 0);
 }
@@ -85,8 +86,8 @@ void TraceStage::bind(const FrameResources& resources) {
            "hzb, range, levels, positions, normals, ray_list, pixel_rays, planes, guess, work_counters, color_pyramid, "
            "base, specular, f0, albedo, ray_hit, ray_radiance, ray_state",
            in(Role::DepthPyramid), in(Role::BackPyramid), in(Role::PyramidLevels), in(Role::Positions), in(Role::Normals), in(Role::RayList),
-           in(Role::PixelRays), in(Role::Planes), in(Role::BackGuess), workCounters_, in(Role::ColorPyramid), baseIn_,
-           specularIn_, f0In_, albedoTable_, out(Role::RayHits), out(Role::RayRadiance), out(Role::RayStates));
+           in(Role::PixelRays), in(Role::Planes), in(Role::BackGuess), workCounters_, in(Role::ColorPyramid), baseIn_.own(),
+           specularIn_.own(), f0In_.own(), albedoTable_, out(Role::RayHits), out(Role::RayRadiance), out(Role::RayStates));
 }
 
 TraceParams TraceStage::params(const FrameConstants& constants, const FrameShape& frame, const TraceSettings& s,
@@ -112,12 +113,12 @@ void TraceStage::upload(cl::CommandQueue& q, const float* base, const float* spe
     q.enqueueFillBuffer(workCounters_, cl_int(0), 0, (SSRCL_FETCH_SLOTS + SSRCL_HISTOGRAM_BINS) * sizeof(cl_int),
                         nullptr, newEvent(events, "upload"));
   if (!hasBase_) return;
-  for (const auto& [buffer, image] : {std::pair{&baseIn_, base}, std::pair{&specularIn_, specular}})
-    q.enqueueWriteBuffer(*buffer, CL_FALSE, 0, frame_.pixels() * 3 * sizeof(float), image, nullptr,
-                         newEvent(events, "upload"));
+  // Arguments 12-14 (bind): this frame's passes.
+  const size_t bytes = frame_.pixels() * 3 * sizeof(float);
+  kernel_.setArg(12, baseIn_.put(q, base, bytes, events));
+  kernel_.setArg(13, specularIn_.put(q, specular, bytes, events));
   if (!materials_) return;
-  q.enqueueWriteBuffer(f0In_, CL_FALSE, 0, frame_.pixels() * 3 * sizeof(float), f0, nullptr,
-                       newEvent(events, "upload"));
+  kernel_.setArg(14, f0In_.put(q, f0, bytes, events));
   q.enqueueWriteBuffer(albedoTable_, CL_FALSE, 0, kAlbedoEntries * sizeof(cl_float2), albedoTable().data(), nullptr,
                        newEvent(events, "upload"));
 }

@@ -6,6 +6,7 @@
 // E that shades hits on glossy pixels. Samples are traced in batches when all of them would not
 // fit the record budget.
 #include "frame_resources.hpp"
+#include "host_backed_buffer.hpp"
 
 namespace ssrcl::detail {
 
@@ -37,9 +38,11 @@ class TraceStage {
  private:
   bool hasBase_ = false, materials_ = false, counting_ = false, views_ = false;
   int batch_ = 1;
+  Device::Impl* device_ = nullptr;
   FrameShape frame_;
   cl::Kernel kernel_;
-  cl::Buffer baseIn_, specularIn_, f0In_, albedoTable_, workCounters_;
+  HostInput baseIn_, specularIn_, f0In_;
+  cl::Buffer albedoTable_, workCounters_;
 };
 
 }  // namespace ssrcl::detail
