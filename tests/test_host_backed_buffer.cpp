@@ -1,9 +1,11 @@
 // Device buffers on a CPU device (host/pipeline/host_backed_buffer.hpp): large ones live in memory
 // the library allocated on 2 MiB boundaries (transparent huge pages), small ones where the driver
 // puts them; both hold what is written to them, and a buffer's memory outlives copies of it. A
-// frame's input image is read where it lies (no copy) when it is aligned as the device's buffers.
+// frame's input image is read where it lies (no copy), and an output written where its image lies,
+// when the memory is aligned as the device's buffers.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdlib>
 #include <memory>
@@ -62,6 +64,36 @@ TEST(HostBackedBuffer, MemoryLivesAsLongAsAnyCopy) {
     copy = first;
   }
   roundTrip(copy, count);  // under the sanitizers a freed host pointer would be a use after free
+}
+
+TEST(HostBackedBuffer, APlannedBufferIsTheCallersMemory) {
+  const size_t count = (size_t(1) << 20) / sizeof(float), bytes = count * sizeof(float);
+  const std::unique_ptr<float, decltype(&std::free)> image(static_cast<float*>(std::aligned_alloc(4096, bytes)),
+                                                           &std::free);
+  std::fill(image.get(), image.get() + count, 0.0f);
+  std::vector<float> other(count);  // both memories outlive the buffers
+  DeviceBuffers buffers;
+  cl::Buffer output;
+  buffers.add(output, bytes, CL_MEM_WRITE_ONLY);
+  buffers.placeIn(output, image.get());
+  buffers.allocate(device(), "test");
+  EXPECT_EQ(usesHostMemory(output, image.get()), hostShared());
+  device().queue.enqueueFillBuffer(output, 2.5f, 0, bytes);
+  if (hostShared()) {  // written where the caller reads, once mapped
+    void* mapped = device().queue.enqueueMapBuffer(output, CL_TRUE, CL_MAP_READ, 0, bytes);
+    EXPECT_EQ(mapped, static_cast<void*>(image.get()));
+    EXPECT_EQ(std::vector<float>(image.get(), image.get() + count), std::vector<float>(count, 2.5f));
+    device().queue.enqueueUnmapMemObject(output, mapped);
+    device().queue.finish();
+  }
+  // The same plan again keeps the buffer; another memory replaces it.
+  buffers.add(output, bytes, CL_MEM_WRITE_ONLY);
+  buffers.placeIn(output, image.get());
+  EXPECT_FALSE(buffers.allocate(device(), "test"));
+  buffers.add(output, bytes, CL_MEM_WRITE_ONLY);
+  buffers.placeIn(output, other.data());
+  EXPECT_TRUE(buffers.allocate(device(), "test"));
+  EXPECT_FALSE(usesHostMemory(output, image.get()));
 }
 
 TEST(HostInput, AlignedPixelsAreReadWhereTheyLie) {

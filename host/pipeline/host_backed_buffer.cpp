@@ -13,13 +13,27 @@ constexpr size_t hugePage = size_t(2) << 20;
 
 void CL_CALLBACK freeHostMemory(cl_mem, void* memory) { std::free(memory); }
 
+// What host memory a buffer can be on this device: aligned as its buffers (0: none can).
+size_t hostAlignment(Device::Impl& device) {
+  return sharesHostMemory(device) ? device.device.getInfo<CL_DEVICE_MEM_BASE_ADDR_ALIGN>() / 8 : 0;
+}
+
+bool aligned(const void* memory, size_t alignment) {
+  return alignment && reinterpret_cast<std::uintptr_t>(memory) % alignment == 0;
+}
+
 }  // namespace
 
 bool sharesHostMemory(Device::Impl& device) {
   return !device.info.isGpu && device.device.getInfo<CL_DEVICE_HOST_UNIFIED_MEMORY>();
 }
 
-cl::Buffer newDeviceBuffer(Device::Impl& device, cl_mem_flags flags, size_t bytes) {
+bool usesHostMemory(const cl::Buffer& buffer, const void* host) {
+  return host && (buffer.getInfo<CL_MEM_FLAGS>() & CL_MEM_USE_HOST_PTR) && buffer.getInfo<CL_MEM_HOST_PTR>() == host;
+}
+
+cl::Buffer newDeviceBuffer(Device::Impl& device, cl_mem_flags flags, size_t bytes, void* host) {
+  if (host && aligned(host, hostAlignment(device))) return cl::Buffer(device.context, flags | CL_MEM_USE_HOST_PTR, bytes, host);
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
   // Each first touch of a 4 KiB page is a fault: a 1080p frame's buffers took some 190,000, 13%
   // of the process's CPU on a virtual machine (perf: exc_page_fault under the kernels, the
@@ -42,7 +56,7 @@ cl::Buffer newDeviceBuffer(Device::Impl& device, cl_mem_flags flags, size_t byte
 
 void HostInput::plan(Device::Impl& device, DeviceBuffers& buffers, size_t bytes) {
   context_ = device.context;
-  alignment_ = sharesHostMemory(device) ? device.device.getInfo<CL_DEVICE_MEM_BASE_ADDR_ALIGN>() / 8 : 0;
+  alignment_ = hostAlignment(device);
   buffers.add(own_, alignment_ ? 0 : bytes, CL_MEM_READ_ONLY);
 }
 
@@ -55,8 +69,7 @@ const cl::Buffer& HostInput::put(cl::CommandQueue& q, const void* data, size_t b
   }
   // Pixels off the device's alignment (a caller's own allocation) are copied once, into memory
   // the driver allocates for this frame.
-  const bool aligned = reinterpret_cast<std::uintptr_t>(data) % alignment_ == 0;
-  frame_ = cl::Buffer(context_, CL_MEM_READ_ONLY | (aligned ? CL_MEM_USE_HOST_PTR : CL_MEM_COPY_HOST_PTR), bytes,
+  frame_ = cl::Buffer(context_, CL_MEM_READ_ONLY | (aligned(data, alignment_) ? CL_MEM_USE_HOST_PTR : CL_MEM_COPY_HOST_PTR), bytes,
                       const_cast<void*>(data));  // read only: the kernels never write it
   return frame_;
 }

@@ -7,6 +7,7 @@
 #include "filter_stage.hpp"
 #include "frame_resources.hpp"
 #include "back_pyramid_stage.hpp"
+#include "host_backed_buffer.hpp"
 #include "hzb_stage.hpp"
 #include "image_views.hpp"
 #include "io/conventions.hpp"
@@ -75,6 +76,7 @@ struct Pipeline::Impl {
   void run();
   void report(double fraction);
   const float* packHitF0();
+  static void download(cl::CommandQueue& q, const cl::Buffer& buffer, Image& image, StageEvents& events);
 };
 
 const StageAccess Pipeline::Impl::access{"pipeline", {}, {Role::Reflection, Role::Distance, Role::ViewShare}};
@@ -156,6 +158,17 @@ void Pipeline::Impl::plan() {
   for (size_t k = 0; k < views.size(); ++k)
     what += (k == 0 ? " with views " : ", ") + ViewStage::name(views[k], static_cast<int>(k)) + " (" +
             std::to_string(views[k].camera.width) + "x" + std::to_string(views[k].camera.height) + ")";
+  buffers.check(d, what);  // before the outputs' images take memory of the frame's size
+  // The outputs' images, which the device writes in place where it works in host memory.
+  if (reflection.width != frame.width || reflection.height != frame.height) {
+    reflection = Image(frame.width, frame.height, 4);
+    distance = Image(frame.width, frame.height, 1);
+  }
+  if (viewCount == 0) view = Image();
+  else if (view.width != frame.width || view.height != frame.height) view = Image(frame.width, frame.height, 2);
+  buffers.placeIn(resources.write(access, Role::Reflection), reflection.data.data());
+  buffers.placeIn(resources.write(access, Role::Distance), distance.data.data());
+  buffers.placeIn(resources.write(access, Role::ViewShare), view.data.data());
   const bool reallocated = buffers.allocate(d, what);
   if (reconfigure || reallocated)
     for (ViewSource& v : views) v.prepared = false;
@@ -173,12 +186,6 @@ void Pipeline::Impl::plan() {
   filter.bind(resources);
   environmentFill.bind(d.queue, resources);
   viewStage.bind(d.queue, camera, views, resources);
-  if (reflection.width != frame.width || reflection.height != frame.height) {
-    reflection = Image(frame.width, frame.height, 4);
-    distance = Image(frame.width, frame.height, 1);
-  }
-  if (viewCount == 0) view = Image();
-  else if (view.width != frame.width || view.height != frame.height) view = Image(frame.width, frame.height, 2);
 }
 
 void Pipeline::Impl::report(double fraction) {
@@ -186,6 +193,18 @@ void Pipeline::Impl::report(double fraction) {
     DeviceAccess::impl(device).queue.finish();
     throw Error(ErrorCode::Cancelled, "pipeline: execute() cancelled by the progress monitor");
   }
+}
+
+// An output into its image: read back, or where the device wrote the image in place, mapped (a
+// CPU driver's map of its host memory copies nothing; OpenCL asks for one before the host reads).
+void Pipeline::Impl::download(cl::CommandQueue& q, const cl::Buffer& buffer, Image& image, StageEvents& events) {
+  const size_t bytes = image.data.size() * sizeof(float);
+  if (!usesHostMemory(buffer, image.data.data())) {
+    q.enqueueReadBuffer(buffer, CL_FALSE, 0, bytes, image.data.data(), nullptr, newEvent(events, "download"));
+    return;
+  }
+  void* mapped = q.enqueueMapBuffer(buffer, CL_TRUE, CL_MAP_READ, 0, bytes);
+  q.enqueueUnmapMemObject(buffer, mapped, nullptr, newEvent(events, "download"));
 }
 
 void Pipeline::Impl::run() {
@@ -259,13 +278,9 @@ void Pipeline::Impl::run() {
   stage = "environment";
   environmentFill.enqueue(q, constants, camera.view, s, events);
   stage = "download";
-  q.enqueueReadBuffer(outRgba, CL_FALSE, 0, frame.pixels() * sizeof(cl_float4), reflection.data.data(), nullptr,
-                      newEvent(events, "download"));
-  q.enqueueReadBuffer(outDistance, CL_FALSE, 0, frame.pixels() * sizeof(float), distance.data.data(), nullptr,
-                      newEvent(events, "download"));
-  if (!views.empty())
-    q.enqueueReadBuffer(outView, CL_FALSE, 0, frame.pixels() * sizeof(cl_float2), view.data.data(), nullptr,
-                        newEvent(events, "download"));
+  download(q, outRgba, reflection, events);
+  download(q, outDistance, distance, events);
+  if (!views.empty()) download(q, outView, view, events);
   q.finish();
 
   trace.readWork(q, times);

@@ -39,23 +39,34 @@ FrameConstants frameConstants(const FrameShape& frame, const Camera& camera, con
   return c;
 }
 
-void DeviceBuffers::add(cl::Buffer& buffer, size_t bytes, cl_mem_flags flags) {
-  planned_.push_back({&buffer, std::max<size_t>(bytes, 4), flags});  // unused ones still bind
+void DeviceBuffers::add(cl::Buffer& buffer, size_t bytes, cl_mem_flags flags, void* host) {
+  planned_.push_back({&buffer, std::max<size_t>(bytes, 4), flags, bytes ? host : nullptr});  // unused ones still bind
 }
 
-bool DeviceBuffers::allocate(Device::Impl& device, const std::string& what) {
+void DeviceBuffers::placeIn(const cl::Buffer& buffer, void* host) {
+  for (Planned& b : planned_)
+    if (b.buffer == &buffer && b.bytes > 4) b.host = host;
+}
+
+void DeviceBuffers::check(Device::Impl& device, const std::string& what) const {
   size_t total = 0, largest = 0;
   for (const Planned& b : planned_) {
     total += b.bytes;
     largest = std::max(largest, b.bytes);
   }
   checkDeviceMemory(device, largest, total, what);
+}
+
+bool DeviceBuffers::allocate(Device::Impl& device, const std::string& what) {
+  check(device, what);
+  size_t total = 0;
+  for (const Planned& b : planned_) total += b.bytes;
   bool changed = false;
   for (const Planned& b : planned_) {
     auto& held = allocated_[b.buffer];
-    if (held == std::pair{b.bytes, b.flags} && (*b.buffer)()) continue;
-    *b.buffer = newDeviceBuffer(device, b.flags, b.bytes);
-    held = {b.bytes, b.flags};
+    if (held == b && (*b.buffer)()) continue;
+    *b.buffer = newDeviceBuffer(device, b.flags, b.bytes, b.host);
+    held = b;
     changed = true;
   }
   planned_.clear();

@@ -44,7 +44,13 @@ FrameConstants frameConstants(const FrameShape& frame, const Camera& camera, con
 // same, so a new frame of the same size reallocates nothing.
 class DeviceBuffers {
  public:
-  void add(cl::Buffer& buffer, size_t bytes, cl_mem_flags flags = CL_MEM_READ_WRITE);
+  // `host`: the caller's memory of at least `bytes` that the buffer is, where the device can work
+  // in it (newDeviceBuffer); it must outlive the buffer.
+  void add(cl::Buffer& buffer, size_t bytes, cl_mem_flags flags = CL_MEM_READ_WRITE, void* host = nullptr);
+  // The buffer planned as `buffer` is `host` (as add's), given once the plan is checked.
+  void placeIn(const cl::Buffer& buffer, void* host);
+  // Throws Error(OutOfMemory) naming `what` where the plan does not fit the device.
+  void check(Device::Impl& device, const std::string& what) const;
   // Checks the plan against the device and (re)allocates what changed; clears the plan.
   // Returns whether anything was (re)allocated.
   bool allocate(Device::Impl& device, const std::string& what);
@@ -55,9 +61,11 @@ class DeviceBuffers {
     cl::Buffer* buffer;
     size_t bytes;
     cl_mem_flags flags;
+    void* host;
+    bool operator==(const Planned& o) const { return bytes == o.bytes && flags == o.flags && host == o.host; }
   };
   std::vector<Planned> planned_;
-  std::map<const cl::Buffer*, std::pair<size_t, cl_mem_flags>> allocated_;
+  std::map<const cl::Buffer*, Planned> allocated_;
   size_t bytes_ = 0;
 };
 
