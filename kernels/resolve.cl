@@ -298,6 +298,8 @@ __kernel void resolve_accumulate(ResolveParams params, __global const int* tile_
   }
 }
 
+// out_rgba may be acc_radiance itself (the filter's input, host/pipeline/resolve_stage.cpp): each
+// pixel reads its sums before it writes its result.
 __kernel void resolve_finalize(ResolveParams params, __global const int* tile_list,
                                __global const float4* acc_radiance, __global const float2* acc_weight,
                                __global float4* out_rgba, __global float* out_distance,

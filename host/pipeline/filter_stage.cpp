@@ -15,7 +15,6 @@ void FilterStage::configure(Device::Impl& device, const TraceSettings& s) {
 }
 
 void FilterStage::plan(FrameResources& resources, DeviceBuffers& buffers, const FrameShape& frame) {
-  resources.plan(access, buffers, Role::ResolvedRgba, enabled_ ? frame.pixels() * sizeof(cl_float4) : 0);
   resources.plan(access, buffers, Role::ResolvedDistance, enabled_ ? frame.pixels() * sizeof(float) : 0);
 }
 

@@ -27,7 +27,7 @@ enum class Role {
   RayHits,           // per (pixel, batch slot); see kernels/trace.cl
   RayRadiance,       // per (pixel, batch slot)
   RayStates,         // per (pixel, batch slot), with views (SSRCL_RAY_*)
-  ResolvedRgba,      // the resolve's result when the filter follows
+  ResolvedRgba,      // the resolve's sums (w c L, w c), finalized in place when the filter follows
   ResolvedDistance,  //   (its input)
   Reflection,        // the outputs
   Distance,

@@ -146,7 +146,7 @@ void Pipeline::Impl::plan() {
   backPyramid.plan(resources, buffers, frame);
   colors.plan(resources, buffers, frame);
   trace.plan(resources, buffers, frame);
-  resolve.plan(buffers, frame);
+  resolve.plan(resources, buffers, frame);
   filter.plan(resources, buffers, frame);
   environmentFill.plan(buffers, frame);
   resources.plan(access, buffers, Role::Reflection, frame.pixels() * sizeof(cl_float4), CL_MEM_WRITE_ONLY);

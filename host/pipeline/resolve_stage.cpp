@@ -28,9 +28,10 @@ void ResolveStage::configure(Device::Impl& device, const TraceSettings& s, int v
   finalize_ = cl::Kernel(program, "resolve_finalize");
 }
 
-void ResolveStage::plan(DeviceBuffers& buffers, const FrameShape& frame) {
+void ResolveStage::plan(FrameResources& resources, DeviceBuffers& buffers, const FrameShape& frame) {
   frame_ = frame;
-  buffers.add(radiance_, frame.pixels() * sizeof(cl_float4));
+  // The radiance sums become the filter's input where they lie (a frame's float4s less).
+  resources.plan(access, buffers, Role::ResolvedRgba, frame.pixels() * sizeof(cl_float4));
   buffers.add(weight_, frame.pixels() * sizeof(cl_float2));
   buffers.add(sources_, views_ > 0 ? frame.pixels() * (views_ + 1) * sizeof(float) : 0);
 }
@@ -42,9 +43,9 @@ void ResolveStage::bind(const FrameResources& resources, bool filtered) {
            "tile_list, positions, normals, pixel_rays, ray_hit, ray_radiance, acc_radiance, acc_weight, ray_state, "
            "acc_sources",
            in(Role::TileList), in(Role::Positions), in(Role::Normals), in(Role::PixelRays), in(Role::RayHits),
-           in(Role::RayRadiance), radiance_, weight_, in(Role::RayStates), sources_);
+           in(Role::RayRadiance), out(Role::ResolvedRgba), weight_, in(Role::RayStates), sources_);
   bindArgs(finalize_, 1, "tile_list, acc_radiance, acc_weight, out_rgba, out_distance, acc_sources, out_view",
-           in(Role::TileList), radiance_, weight_, out(filtered ? Role::ResolvedRgba : Role::Reflection),
+           in(Role::TileList), out(Role::ResolvedRgba), weight_, out(filtered ? Role::ResolvedRgba : Role::Reflection),
            out(filtered ? Role::ResolvedDistance : Role::Distance), sources_, out(Role::ViewShare));
 }
 

@@ -12,7 +12,7 @@ class ResolveStage {
   static const StageAccess access;
 
   void configure(Device::Impl& device, const TraceSettings& s, int views);
-  void plan(DeviceBuffers& buffers, const FrameShape& frame);
+  void plan(FrameResources& resources, DeviceBuffers& buffers, const FrameShape& frame);
   // The result goes to the outputs, or with `filtered` to the filter's input; with views the
   // source index and share of views per pixel to the view share.
   void bind(const FrameResources& resources, bool filtered);
@@ -25,7 +25,7 @@ class ResolveStage {
   FrameShape frame_;
   int views_ = 0;
   cl::Kernel accumulate_, finalize_;
-  cl::Buffer radiance_, weight_, sources_;  // running sums across batches
+  cl::Buffer weight_, sources_;  // running sums across batches, with Role::ResolvedRgba's
 };
 
 // Runs `kernel` with one work-item a row of each of `tiles` listed tiles: work-groups of
