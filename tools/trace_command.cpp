@@ -1,8 +1,10 @@
 #include <filesystem>
+#include <exception>
 #include <future>
 #include <iomanip>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include "commands.hpp"
 #include "exit_codes.hpp"
@@ -38,22 +40,38 @@ int runTrace(TraceOptions& o) {
     return kExitOutput;
   }
 
-  // The driver loads its libraries and compiler (some 0.15 s of one core) while the files are read;
-  // a bad file is still reported before a missing device.
-  std::future<Device> opening = std::async(std::launch::async, [&o] { return openDevice(o.device); });
-  const EnvironmentMap environment = o.settings.loadEnvironment();  // a bad file fails before any tracing
-  const Frame frame = loadFrame(o.in.sourceFor(o.input, o.camera));
-  std::cerr << settleOutputForm(o.in, frame);
+  // The driver loads its libraries and compiler (some 0.15 s of one core) on this thread while
+  // another reads the files: the driver stays on the thread that runs it (LLVM keeps per-thread
+  // signal state). A bad file is still reported before a missing device.
+  struct Read {
+    EnvironmentMap environment;
+    Frame frame;
+    Views views, neighbours;
+  };
+  std::future<Read> reading = std::async(std::launch::async, [&o] {
+    Read r{o.settings.loadEnvironment(), loadFrame(o.in.sourceFor(o.input, o.camera)), {}, {}};
+    std::cerr << settleOutputForm(o.in, r.frame);
+    r.views = loadViews(o.in, o.views, o.viewCameras);
+    r.neighbours = loadViews(o.in, o.neighbours, {});
+    return r;
+  });
+  std::optional<Device> opened;
+  std::exception_ptr noDevice;
+  try {
+    opened.emplace(openDevice(o.device));
+  } catch (...) {
+    noDevice = std::current_exception();
+  }
+  const Read read = reading.get();
+  if (noDevice) std::rethrow_exception(noDevice);
+  const Frame& frame = read.frame;
   const Camera& camera = frame.camera;
-  const Views views = loadViews(o.in, o.views, o.viewCameras);
-  const Views neighbours = loadViews(o.in, o.neighbours, {});
-
-  Device device = opening.get();
+  Device& device = *opened;
   Pipeline pipeline(device);
   setFrame(pipeline, frame);
-  setViews(pipeline, views);
-  addViews(pipeline, neighbours, ViewTime::Other);
-  pipeline.setEnvironment(environment);
+  setViews(pipeline, read.views);
+  addViews(pipeline, read.neighbours, ViewTime::Other);
+  pipeline.setEnvironment(read.environment);
   pipeline.settings() = o.in.applyTo(o.settings.resolve());
   pipeline.commit();
   pipeline.execute();
