@@ -23,6 +23,11 @@ ssrcl::Device::Impl& device() { return DeviceAccess::impl(ssrcl::test::sharedTes
 
 bool hostShared() { return sharesHostMemory(device()); }
 
+// Whether `buffer` is the memory at `host`.
+bool usesHostMemory(const cl::Buffer& buffer, const void* host) {
+  return (buffer.getInfo<CL_MEM_FLAGS>() & CL_MEM_USE_HOST_PTR) && buffer.getInfo<CL_MEM_HOST_PTR>() == host;
+}
+
 std::vector<float> readBack(const cl::Buffer& buffer, size_t count) {
   std::vector<float> out(count, -1.0f);
   device().queue.enqueueReadBuffer(buffer, CL_TRUE, 0, count * sizeof(float), out.data());

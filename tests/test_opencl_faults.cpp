@@ -25,10 +25,13 @@ struct Fault {
 };
 
 // The first kernel launch is the setup stage's, the first read its pixel counts, the first
-// buffer and the first write belong to commit's allocation (the Hi-Z level table).
+// buffer and the first write belong to commit's allocation (the Hi-Z level table). The download
+// maps the outputs on a device that works in host memory (PoCL's CPU device) and reads them back
+// elsewhere (the second read): each device runs one of those two.
 const Fault kFaults[] = {
     {"clEnqueueNDRangeKernel", 1, "-5", "CL_OUT_OF_RESOURCES", "(setup stage)"},
     {"clEnqueueReadBuffer", 1, "-5", "CL_OUT_OF_RESOURCES", "(setup stage)"},
+    {"clEnqueueMapBuffer", 1, "-36", "CL_INVALID_COMMAND_QUEUE", "(download stage)"},
     {"clEnqueueReadBuffer", 2, "-36", "CL_INVALID_COMMAND_QUEUE", "(download stage)"},
     {"clCreateBuffer", 3, "-4", "CL_MEM_OBJECT_ALLOCATION_FAILURE", "allocating device buffers"},
     {"clEnqueueWriteBuffer", 1, "-5", "CL_OUT_OF_RESOURCES", "allocating device buffers"},
@@ -68,6 +71,9 @@ TEST_P(OpenClFault, ExitsThreeNamingTheCallAndKeepsTheEarlierOutput) {
   const std::string before = ssrcl::test::readBytes(out);
 
   auto r = trace(f.call, f.at, f.status);
+  const bool download = std::string(f.where) == "(download stage)";
+  if (download && r.exitCode == 0 && r.output.find("opencl_fault:") == std::string::npos)
+    GTEST_SKIP() << "this device downloads its outputs the other way (" << f.call << " not called)";
   // The injection happened (else this test would prove nothing).
   ASSERT_NE(r.output.find(std::string("opencl_fault: ") + f.call + " call " + std::to_string(f.at)), std::string::npos)
       << r.output;

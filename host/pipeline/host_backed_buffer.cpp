@@ -28,10 +28,6 @@ bool sharesHostMemory(Device::Impl& device) {
   return !device.info.isGpu && device.device.getInfo<CL_DEVICE_HOST_UNIFIED_MEMORY>();
 }
 
-bool usesHostMemory(const cl::Buffer& buffer, const void* host) {
-  return host && (buffer.getInfo<CL_MEM_FLAGS>() & CL_MEM_USE_HOST_PTR) && buffer.getInfo<CL_MEM_HOST_PTR>() == host;
-}
-
 cl::Buffer newDeviceBuffer(Device::Impl& device, cl_mem_flags flags, size_t bytes, void* host) {
   if (host && aligned(host, hostAlignment(device))) return cl::Buffer(device.context, flags | CL_MEM_USE_HOST_PTR, bytes, host);
 #if defined(__linux__) && defined(MADV_HUGEPAGE)

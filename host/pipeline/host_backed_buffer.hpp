@@ -14,10 +14,8 @@ namespace ssrcl::detail {
 // Elsewhere, and for smaller buffers, the driver allocates as usual. With `host` (the caller's
 // memory, which must outlive the buffer), the buffer is that memory where the device shares the
 // host's and it is aligned as the device's buffers: what kernels write there is the caller's
-// without a copy (after a map, as OpenCL asks: usesHostMemory).
+// without a copy (after a map, as OpenCL asks).
 cl::Buffer newDeviceBuffer(Device::Impl& device, cl_mem_flags flags, size_t bytes, void* host = nullptr);
-// Whether `buffer` is the memory at `host`.
-bool usesHostMemory(const cl::Buffer& buffer, const void* host);
 
 // Whether `device` works in the host's memory (a CPU device): its buffers can be host memory.
 bool sharesHostMemory(Device::Impl& device);

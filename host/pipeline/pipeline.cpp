@@ -2,6 +2,8 @@
 // and binds them, execute runs them in order.
 #include "ssrcl/pipeline.hpp"
 
+#include <cstring>
+
 #include "color_pyramid_stage.hpp"
 #include "environment_stage.hpp"
 #include "filter_stage.hpp"
@@ -76,7 +78,8 @@ struct Pipeline::Impl {
   void run();
   void report(double fraction);
   const float* packHitF0();
-  static void download(cl::CommandQueue& q, const cl::Buffer& buffer, Image& image, StageEvents& events);
+  static void download(cl::CommandQueue& q, const cl::Buffer& buffer, Image& image, bool hostMemory,
+                       StageEvents& events);
 };
 
 const StageAccess Pipeline::Impl::access{"pipeline", {}, {Role::Reflection, Role::Distance, Role::ViewShare}};
@@ -195,15 +198,18 @@ void Pipeline::Impl::report(double fraction) {
   }
 }
 
-// An output into its image: read back, or where the device wrote the image in place, mapped (a
-// CPU driver's map of its host memory copies nothing; OpenCL asks for one before the host reads).
-void Pipeline::Impl::download(cl::CommandQueue& q, const cl::Buffer& buffer, Image& image, StageEvents& events) {
+// An output into its image: read back from a device's own memory; mapped where the device works
+// in host memory (OpenCL asks for a map before the host reads there), copied only where the buffer
+// is not the image itself (pixels off the device's alignment).
+void Pipeline::Impl::download(cl::CommandQueue& q, const cl::Buffer& buffer, Image& image, bool hostMemory,
+                              StageEvents& events) {
   const size_t bytes = image.data.size() * sizeof(float);
-  if (!usesHostMemory(buffer, image.data.data())) {
+  if (!hostMemory) {
     q.enqueueReadBuffer(buffer, CL_FALSE, 0, bytes, image.data.data(), nullptr, newEvent(events, "download"));
     return;
   }
   void* mapped = q.enqueueMapBuffer(buffer, CL_TRUE, CL_MAP_READ, 0, bytes);
+  if (mapped != image.data.data()) std::memcpy(image.data.data(), mapped, bytes);
   q.enqueueUnmapMemObject(buffer, mapped, nullptr, newEvent(events, "download"));
 }
 
@@ -278,9 +284,10 @@ void Pipeline::Impl::run() {
   stage = "environment";
   environmentFill.enqueue(q, constants, camera.view, s, events);
   stage = "download";
-  download(q, outRgba, reflection, events);
-  download(q, outDistance, distance, events);
-  if (!views.empty()) download(q, outView, view, events);
+  const bool hostMemory = sharesHostMemory(DeviceAccess::impl(device));
+  download(q, outRgba, reflection, hostMemory, events);
+  download(q, outDistance, distance, hostMemory, events);
+  if (!views.empty()) download(q, outView, view, hostMemory, events);
   q.finish();
 
   trace.readWork(q, times);

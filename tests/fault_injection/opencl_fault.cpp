@@ -1,7 +1,8 @@
 // A test-only OpenCL fault injector, LD_PRELOADed in front of the ICD loader: the Nth call of one
 // OpenCL entry point fails with a chosen status, every other call is forwarded unchanged
 // (dlsym(RTLD_NEXT)). The product has no hook for this; tests/test_opencl_faults.cpp drives it.
-//   SSRCL_FAULT_CALL    clEnqueueNDRangeKernel, clEnqueueReadBuffer, clEnqueueWriteBuffer or clCreateBuffer
+//   SSRCL_FAULT_CALL    clEnqueueNDRangeKernel, clEnqueueReadBuffer, clEnqueueWriteBuffer, clEnqueueMapBuffer
+//                       or clCreateBuffer
 //   SSRCL_FAULT_AT      which call of it fails, counting from 1 (default 1)
 //   SSRCL_FAULT_STATUS  the status returned (default CL_OUT_OF_RESOURCES, -5)
 // It announces the injected failure on stderr, so a test can tell it really happened.
@@ -70,6 +71,20 @@ CL_API_ENTRY cl_int CL_API_CALL clEnqueueWriteBuffer(cl_command_queue q, cl_mem 
   using Fn = cl_int (*)(cl_command_queue, cl_mem, cl_bool, size_t, size_t, const void*, cl_uint, const cl_event*,
                        cl_event*);
   return reinterpret_cast<Fn>(next("clEnqueueWriteBuffer"))(q, b, blocking, offset, size, ptr, waits, wait, event);
+}
+
+CL_API_ENTRY void* CL_API_CALL clEnqueueMapBuffer(cl_command_queue q, cl_mem b, cl_bool blocking, cl_map_flags flags,
+                                                  size_t offset, size_t size, cl_uint waits, const cl_event* wait,
+                                                  cl_event* event, cl_int* status) {
+  const cl_int fault = injected("clEnqueueMapBuffer");
+  if (fault) {
+    if (status) *status = fault;
+    return nullptr;
+  }
+  using Fn = void* (*)(cl_command_queue, cl_mem, cl_bool, cl_map_flags, size_t, size_t, cl_uint, const cl_event*,
+                       cl_event*, cl_int*);
+  return reinterpret_cast<Fn>(next("clEnqueueMapBuffer"))(q, b, blocking, flags, offset, size, waits, wait, event,
+                                                          status);
 }
 
 CL_API_ENTRY cl_mem CL_API_CALL clCreateBuffer(cl_context context, cl_mem_flags flags, size_t size, void* host,
