@@ -26,7 +26,7 @@ const char* roleName(Role role) {
 void FrameResources::beginPlan() { planner_.fill(nullptr); }
 
 void FrameResources::plan(const StageAccess& access, DeviceBuffers& buffers, Role role, size_t bytes,
-                          cl_mem_flags flags, void* host) {
+                          cl_mem_flags flags) {
   if (!declares(access.reads, role) && !declares(access.writes, role))
     throw Error(ErrorCode::InvalidOperation, std::string(access.stage) + " plans the frame's " + roleName(role) +
                                                  " but does not declare it");
@@ -35,7 +35,7 @@ void FrameResources::plan(const StageAccess& access, DeviceBuffers& buffers, Rol
     throw Error(ErrorCode::InvalidOperation, std::string("the frame's ") + roleName(role) + " is planned by both " +
                                                  planner + " and " + access.stage);
   planner = access.stage;
-  buffers.add(buffers_[size_t(role)], bytes, flags, host);
+  buffers.add(buffers_[size_t(role)], bytes, flags);
 }
 
 const cl::Buffer& FrameResources::planned(const StageAccess& access, Role role) const {

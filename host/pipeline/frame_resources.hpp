@@ -46,9 +46,9 @@ class FrameResources {
  public:
   // Starts a plan: every shared role is planned by one stage, once.
   void beginPlan();
-  // Plans `role` in `buffers` for `access`'s stage, which must declare it (`host`: DeviceBuffers::add).
+  // Plans `role` in `buffers` for `access`'s stage, which must declare it.
   void plan(const StageAccess& access, DeviceBuffers& buffers, Role role, size_t bytes,
-            cl_mem_flags flags = CL_MEM_READ_WRITE, void* host = nullptr);
+            cl_mem_flags flags = CL_MEM_READ_WRITE);
   // The role's buffer for binding: one `access` declares it reads or writes, and some stage planned.
   // Throw Error(InvalidOperation) naming the stage and the role otherwise.
   const cl::Buffer& read(const StageAccess& access, Role role) const;

@@ -39,28 +39,27 @@ FrameConstants frameConstants(const FrameShape& frame, const Camera& camera, con
   return c;
 }
 
-void DeviceBuffers::add(cl::Buffer& buffer, size_t bytes, cl_mem_flags flags, void* host) {
-  planned_.push_back({&buffer, std::max<size_t>(bytes, 4), flags, bytes ? host : nullptr});  // unused ones still bind
+void DeviceBuffers::add(cl::Buffer& buffer, size_t bytes, cl_mem_flags flags) {
+  planned_.push_back({&buffer, std::max<size_t>(bytes, 4), flags, nullptr});  // unused ones still bind
 }
 
 void DeviceBuffers::placeIn(const cl::Buffer& buffer, void* host) {
   for (Planned& b : planned_)
-    if (b.buffer == &buffer && b.bytes > 4) b.host = host;
+    if (b.buffer == &buffer && b.bytes > 4) b.host = host;  // a placeholder (planned empty) stays the driver's
 }
 
-void DeviceBuffers::check(Device::Impl& device, const std::string& what) const {
+size_t DeviceBuffers::check(Device::Impl& device, const std::string& what) const {
   size_t total = 0, largest = 0;
   for (const Planned& b : planned_) {
     total += b.bytes;
     largest = std::max(largest, b.bytes);
   }
   checkDeviceMemory(device, largest, total, what);
+  return total;
 }
 
 bool DeviceBuffers::allocate(Device::Impl& device, const std::string& what) {
-  check(device, what);
-  size_t total = 0;
-  for (const Planned& b : planned_) total += b.bytes;
+  const size_t total = check(device, what);
   bool changed = false;
   for (const Planned& b : planned_) {
     auto& held = allocated_[b.buffer];

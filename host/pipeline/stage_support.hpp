@@ -44,13 +44,12 @@ FrameConstants frameConstants(const FrameShape& frame, const Camera& camera, con
 // same, so a new frame of the same size reallocates nothing.
 class DeviceBuffers {
  public:
-  // `host`: the caller's memory of at least `bytes` that the buffer is, where the device can work
-  // in it (newDeviceBuffer); it must outlive the buffer.
-  void add(cl::Buffer& buffer, size_t bytes, cl_mem_flags flags = CL_MEM_READ_WRITE, void* host = nullptr);
-  // The buffer planned as `buffer` is `host` (as add's), given once the plan is checked.
+  void add(cl::Buffer& buffer, size_t bytes, cl_mem_flags flags = CL_MEM_READ_WRITE);
+  // The buffer planned as `buffer` is the caller's memory at `host` (of at least its bytes, outliving
+  // it) where the device can work there (newDeviceBuffer); given once the plan is checked.
   void placeIn(const cl::Buffer& buffer, void* host);
-  // Throws Error(OutOfMemory) naming `what` where the plan does not fit the device.
-  void check(Device::Impl& device, const std::string& what) const;
+  // Throws Error(OutOfMemory) naming `what` where the plan does not fit the device; else its bytes.
+  size_t check(Device::Impl& device, const std::string& what) const;
   // Checks the plan against the device and (re)allocates what changed; clears the plan.
   // Returns whether anything was (re)allocated.
   bool allocate(Device::Impl& device, const std::string& what);
