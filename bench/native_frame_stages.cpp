@@ -129,13 +129,15 @@ struct ThicknessLines {
   }
 };
 
-// back_pyramid.cl slab_far_end.
-float slabFarEnd(const glm::mat4& invProj, int w, int h, vec2 corner, vec3 n, float c, int& sign) {
+// back_pyramid.cl slab_ends.
+float slabEnds(const glm::mat4& invProj, int w, int h, vec2 corner, vec3 n, float c, int& sign, float& near) {
   vec3 origin, step;
   viewLine(invProj, vec2(2.0f * corner.x / float(w) - 1.0f, 1.0f - 2.0f * corner.y / float(h)), origin, step);
   const float along = glm::dot(step, n), from = glm::dot(origin, n);
   sign |= along > 0.0f ? 1 : along < 0.0f ? 2 : 3;
-  return clFmax((c - from) / along, (c - 1.0f - from) / along) - origin.z;
+  const float a = (c - from) / along, b = (c - 1.0f - from) / along;
+  near = clFmin(a, b) - origin.z;
+  return clFmax(a, b) - origin.z;
 }
 
 // back_pyramid.cl back_level0, row y; every pixel computed and the sky's result selected away,
@@ -150,19 +152,28 @@ SSRCL_NATIVE_CLONES void rangeLevel0Row(const glm::mat4& invProj, int w, int h, 
     int sign = 0;
     const vec3 n(plane);
     const float fx = float(x);
-    float farEnd = clFmax(clFmax(slabFarEnd(invProj, w, h, vec2(fx + lo, fy + lo), n, plane.w, sign),
-                                 slabFarEnd(invProj, w, h, vec2(fx + hi, fy + lo), n, plane.w, sign)),
-                          clFmax(slabFarEnd(invProj, w, h, vec2(fx + lo, fy + hi), n, plane.w, sign),
-                                 slabFarEnd(invProj, w, h, vec2(fx + hi, fy + hi), n, plane.w, sign)));
-    farEnd = (sign == 1 || sign == 2) && std::fabs(farEnd) < INFINITY ? farEnd + 1e-3f * std::fabs(farEnd) : INFINITY;
-    range[i] = vec2(hzb[i], plane.w != -INFINITY ? farEnd : -INFINITY);  // SSRCL_NO_PLANE: nothing to hit
+    float n0, n1, n2, n3;
+    float farEnd = clFmax(clFmax(slabEnds(invProj, w, h, vec2(fx + lo, fy + lo), n, plane.w, sign, n0),
+                                 slabEnds(invProj, w, h, vec2(fx + hi, fy + lo), n, plane.w, sign, n1)),
+                          clFmax(slabEnds(invProj, w, h, vec2(fx + lo, fy + hi), n, plane.w, sign, n2),
+                                 slabEnds(invProj, w, h, vec2(fx + hi, fy + hi), n, plane.w, sign, n3)));
+    float nearEnd = clFmin(clFmin(n0, n1), clFmin(n2, n3));
+    const bool bounded = (sign == 1 || sign == 2) && std::fabs(farEnd) < INFINITY && std::fabs(nearEnd) < INFINITY;
+    farEnd = bounded ? farEnd + 1e-3f * std::fabs(farEnd) : INFINITY;
+    nearEnd = clFmin(bounded ? nearEnd - 1e-3f * std::fabs(nearEnd) : -INFINITY, hzb[i]);
+    const bool sky = plane.w == -INFINITY;  // SSRCL_NO_PLANE: nothing to hit
+    range[i] = vec2(sky ? INFINITY : nearEnd, sky ? -INFINITY : farEnd);
   }
 }
 
-SSRCL_NATIVE_CLONES void rangeReduceRow(const std::vector<HzbLevel>& levels, int l, int y, vec2* range) {
+// back_pyramid.cl range_reduce, row y of level l: the nearest the HZB's, the farthest of the four.
+SSRCL_NATIVE_CLONES void rangeReduceRow(const std::vector<HzbLevel>& levels, int l, int y, const float* hzb,
+                                        vec2* range) {
   reducePyramidRow(levels, l, y, range, [](vec2 a, vec2 b, vec2 c, vec2 d, bool, bool) {
-    return vec2(clFmin(clFmin(a.x, b.x), clFmin(c.x, d.x)), clFmax(clFmax(a.y, b.y), clFmax(c.y, d.y)));
+    return vec2(0.0f, clFmax(clFmax(a.y, b.y), clFmax(c.y, d.y)));
   });
+  const HzbLevel dst = levels[l];
+  for (int x = 0, i = dst.offset + y * dst.width; x < dst.width; ++x, ++i) range[i].x = hzb[i];
 }
 
 // color_pyramid.cl color_reduce, row y of level l: the mean of the texels under it that exist,
@@ -200,7 +211,7 @@ void buildRangePyramid(const std::vector<HzbLevel>& levels, const glm::mat4& inv
                   const vec4* planes, vec2* range, int threads) {
   const int w = levels[0].width, h = levels[0].height;
   parallelRows(h, threads, [&](int y) { rangeLevel0Row(invProj, w, h, y, hzb, planes, range); });
-  reduceLevels(levels, threads, [&](int l, int y) { rangeReduceRow(levels, l, y, range); });
+  reduceLevels(levels, threads, [&](int l, int y) { rangeReduceRow(levels, l, y, hzb, range); });
 }
 
 void reduceColorPyramid(const std::vector<HzbLevel>& levels, vec4* pyramid, int threads) {

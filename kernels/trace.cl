@@ -38,16 +38,8 @@ typedef struct {
 } ScreenRay;
 
 inline float4 ray_q(const ScreenRay* r, float t) { return r->q0 + t * r->dq; }
-inline float ray_depth(const ScreenRay* r, float t) { float4 q = ray_q(r, t); return -q.z / q.w; }
 inline float3 ray_point(const ScreenRay* r, float t) { float4 q = ray_q(r, t); return q.xyz / q.w; }
 inline float2 ray_screen(const ScreenRay* r, float t) { return r->s0 + t * r->ds; }
-
-// t where the ray's depth equals d (a Moebius function of t, so one closed-form root).
-inline float ray_t_at_depth(const ScreenRay* r, float d) {
-  float denom = r->dq.z + d * r->dq.w;
-  float t = -(r->q0.z + d * r->q0.w) / denom;
-  return (denom != 0.0f && isfinite(t)) ? t : INFINITY;
-}
 
 // Parameter where the ray leaves the cell of `cell_size` pixels it occupies just after t. The
 // cell is looked up slightly ahead of t so a ray sitting on a boundary counts as having crossed it.
@@ -183,59 +175,81 @@ inline float hit_pixel(TraceScene* sc, const ScreenRay* ray, float3 dir, int2 ce
   return -1.0f;
 }
 
-// Whether the ray over [t0, t1] (clipped to its end) is behind every hit the cell at `mip` allows:
-// its nearest depth there (depth is monotonic along it) beyond the back pyramid's texel.
-inline bool behind_back(TraceScene* sc, const ScreenRay* ray, float t0, float t1, int mip, int2 cell) {
-  if (!SSRCL_BACK_SKIP) return false;
-  ++sc->fetches;
-  return fmin(ray_depth(ray, fmin(t0, 1.0f)), ray_depth(ray, fmin(t1, 1.0f))) >
-         sc->range[pyramid_index(sc->levels, mip, cell)].y;
+// The depths at which a ray over cell `cell` of level `level` may hit: from the nearest surface
+// there (x) to the farthest a hit allows (y, the back pyramid; unbounded without it).
+inline float2 cell_range(const TraceScene* sc, int level, int2 cell) {
+  int i = pyramid_index(sc->levels, level, cell);
+#if SSRCL_BACK_SKIP
+  return sc->range[i];
+#else
+  return (float2)(sc->hzb[i], INFINITY);
+#endif
 }
 
-// Hierarchical traversal (FidelityFX SSSR style): climb while the ray stays in front of a cell's
-// nearest depth, descend where it may hit, skip what it passes wholly behind (behind_back), and
-// decide at full resolution with hit_pixel.
+// A cell's side as a float: 2^level from the exponent bits.
+inline float cell_size(int level) { return as_float((level + 127) << 23); }
+
+// Hierarchical traversal (FidelityFX SSSR style), stepped as a native packet tracer steps: cells are
+// integers, their boundaries found from the ray's reciprocal screen direction (t at x = (x - s0.x) * ix),
+// and at every level one test, whether the ray's depth over its stretch of the cell meets the cell's
+// range. A coarse cell it meets is entered a level finer where the ray reaches the range's near end;
+// a pixel it meets is decided by hit_pixel; a cell it misses is left for the next one along, up as
+// many levels (at most two) as that step leaves parents. A pixel whose surface the ray passed
+// behind within reach keeps it fine. With views every pixel is tested (hit_pixel records the ray's
+// passage behind surfaces).
 // Returns the hit's t, or a negative value on a miss.
 inline float trace_hiz(TraceScene* sc, const ScreenRay* ray, float3 dir, int2* hit_cell) {
-  float major = fmax(fabs(ray->ds.x), fabs(ray->ds.y));
-  float nudge = 0.01f / major;  // a hundredth of a pixel along the major axis
-  bool deeper = ray->q0.z * ray->dq.w - ray->dq.z * ray->q0.w > 0.0f;  // depth grows with t
-  int2 cell;
-  float t = cell_exit(ray, 0.0f, nudge, 1.0f, &cell);  // leave the origin pixel first
-  int mip = 0;
+  const int top = sc->level_count - 1;
+  // A still axis never reaches a boundary: its boundary t are huge (ix > 0: the one ahead is above).
+  const float ix = fabs(ray->ds.x) < 1e-12f ? 1e30f : 1.0f / ray->ds.x;
+  const float iy = fabs(ray->ds.y) < 1e-12f ? 1e30f : 1.0f / ray->ds.y;
+  const int px = ix > 0.0f, py = iy > 0.0f;  // 1 where the ray goes to +x, +y
+  const bool deeper = ray->q0.z * ray->dq.w - ray->dq.z * ray->q0.w > 0.0f;  // depth grows with t
+  // Leave the origin pixel first.
+  int2 c = convert_int2(floor(ray->s0));
+  float tx = ((float)(c.x + px) - ray->s0.x) * ix, ty = ((float)(c.y + py) - ray->s0.y) * iy;
+  c = tx <= ty ? (int2)(c.x + 2 * px - 1, c.y) : (int2)(c.x, c.y + 2 * py - 1);
+  float t = fmin(tx, ty);
+  float d_t = -(ray->q0.z + t * ray->dq.z) / (ray->q0.w + t * ray->dq.w);
+  int level = 0;
   for (; sc->iterations < sc->max_iterations && t <= 1.0f; ++sc->iterations) {
-    float t_exit = cell_exit(ray, t, nudge, (float)(1 << mip), &cell);
-    if (mip == 0) {
+    const float size = cell_size(level);
+    tx = ((float)(c.x + px) * size - ray->s0.x) * ix;
+    ty = ((float)(c.y + py) * size - ray->s0.y) * iy;
+    const float t_exit = fmin(tx, ty), t_end = fmin(t_exit, 1.0f);
+    const float d_end = -(ray->q0.z + t_end * ray->dq.z) / (ray->q0.w + t_end * ray->dq.w);
+    ++sc->fetches;
+    const float2 range = cell_range(sc, level, c);
+    const bool meets = fmax(d_t, d_end) >= range.x && fmin(d_t, d_end) <= range.y;
+    bool stay = false;
+    if (level == 0 && (meets || SSRCL_VIEWS)) {
       bool in_front;
-      float t_hit = hit_pixel(sc, ray, dir, cell, t, fmin(t_exit, 1.0f), &in_front);
+      float t_hit = hit_pixel(sc, ray, dir, c, t, t_end, &in_front);
       if (t_hit >= 0.0f) {
-        *hit_cell = cell;
+        *hit_cell = c;
         return t_hit;
       }
-      // Climb where it leaves in front, or behind all the pixel allows (likely its neighbours' too);
-      // else it passed behind within reach: stay fine.
-      if (in_front || behind_back(sc, ray, t_exit, t_exit, 0, cell)) mip = min(1, sc->level_count - 1);
-      t = t_exit;
+      stay = !in_front && d_end <= range.y;
+    } else if (level > 0 && meets) {
+      const float t_cross = -(ray->q0.z + range.x * ray->q0.w) / (ray->dq.z + range.x * ray->dq.w);
+      if (d_t < range.x && deeper && isfinite(t_cross)) {
+        t = fmax(t, fmin(t_cross, t_end));
+        d_t = range.x;
+      }
+      // The child holding the ray at t: past the cell's middle along the ray, the one ahead.
+      const float half_size = 0.5f * size;
+      const float mid_x = ((float)(2 * c.x + 1) * half_size - ray->s0.x) * ix;
+      const float mid_y = ((float)(2 * c.y + 1) * half_size - ray->s0.y) * iy;
+      c = (int2)(2 * c.x + (t >= mid_x ? px : px ^ 1), 2 * c.y + (t >= mid_y ? py : py ^ 1));
+      --level;
       continue;
     }
-    float d_min = hzb_fetch(sc->hzb, sc->levels, mip, cell);
-    ++sc->fetches;
-    if (ray_depth(ray, t) >= d_min && behind_back(sc, ray, t, t_exit, mip, cell)) {
-      t = t_exit;  // behind every hit this cell allows
-      mip = min(mip + 1, sc->level_count - 1);
-    } else if (ray_depth(ray, t) < d_min) {
-      // In front of everything in this cell: does the ray reach the cell's nearest depth inside it?
-      float t_cross = (deeper && d_min < SSRCL_NO_SURFACE) ? ray_t_at_depth(ray, d_min) : INFINITY;
-      if (t_cross <= t_exit) {
-        t = fmax(t, t_cross);
-        --mip;
-      } else {
-        t = t_exit;
-        mip = min(mip + 1, sc->level_count - 1);
-      }
-    } else {
-      --mip;  // possibly behind something in this cell: look closer
-    }
+    const int2 next = tx <= ty ? (int2)(c.x + 2 * px - 1, c.y) : (int2)(c.x, c.y + 2 * py - 1);
+    const int up = stay ? 0 : min(min(31 - (int)clz((next.x ^ c.x) | (next.y ^ c.y)), 2), top - level);
+    c = next >> up;
+    level += up;
+    t = t_exit;
+    d_t = d_end;
   }
   return -1.0f;
 }
@@ -260,23 +274,6 @@ inline float8 gather8_xy(__global const float2* a, int8 i, float8* y) {
   __global const float* f = (__global const float*)a;
   *y = gather8(f, 2 * i + 1);
   return gather8(f, 2 * i);
-}
-
-// cell_exit per lane.
-inline float8 cell_exit8(const ScreenRays8* r, float8 t, float8 nudge, float8 cell_size, int8* cx, int8* cy) {
-  float8 ta = t + nudge;
-  // cell_size is a power of two: times its reciprocal (the exponent negated) is the same quotient.
-  float8 inv_cell = as_float8((int8)(254 << 23) - as_int8(cell_size));
-  float8 fx = floor((r->s0x + ta * r->dsx) * inv_cell), fy = floor((r->s0y + ta * r->dsy) * inv_cell);
-  *cx = convert_int8(fx);
-  *cy = convert_int8(fy);
-  // The boundary in its own statement: folded into the subtraction it would round once (an FMA).
-  float8 bx = (fx + select((float8)(0.0f), (float8)(1.0f), isgreater(r->dsx, (float8)(0.0f)))) * cell_size;
-  float8 by = (fy + select((float8)(0.0f), (float8)(1.0f), isgreater(r->dsy, (float8)(0.0f)))) * cell_size;
-  float8 tx = (bx - r->s0x) / r->dsx, ty = (by - r->s0y) / r->dsy;
-  tx = select(tx, (float8)(INFINITY), isless(fabs(r->dsx), (float8)(1e-12f)));
-  ty = select(ty, (float8)(INFINITY), isless(fabs(r->dsy), (float8)(1e-12f)));
-  return fmin(tx, ty);
 }
 
 // plane_side per lane.
@@ -332,11 +329,11 @@ inline void note_past_back8(const ScreenRays8* r, int8 now, float8 g, float8 gue
   *past_y = select(*past_y, cy, now);
 }
 
-// A packet: eight rays in float8 lanes and where each stands.
+// A packet: eight rays in float8 lanes and where each stands (trace_hiz's variables per lane).
 typedef struct {
   ScreenRays8 r;
-  float8 dx, dy, dz, nudge, t, t_hit;
-  int8 deeper, mip, cx, cy, hit_x, hit_y, active, iterations, fetches, seen, behind, thick, hidden, entered;
+  float8 dx, dy, dz, ix, iy, t, d_t, t_hit;
+  int8 px, py, cx, cy, level, deeper, active, iterations, fetches, hit_x, hit_y, seen, behind, thick, hidden, entered;
   int8 past, past_x, past_y;  // SSRCL_BACK_KNOWN: TraceScene's past, per lane
   float8 past_t;
 } Packet8;
@@ -365,10 +362,19 @@ inline void packet_begin(Packet8* p, const TraceScene* sc, const ScreenRay* rays
   p->behind = p->thick = p->hidden = p->entered = 0;
   p->past = p->past_x = p->past_y = 0;
   p->past_t = -1.0f;
-  p->nudge = 0.01f / fmax(fabs(r.dsx), fabs(r.dsy));
+  p->ix = select(1.0f / r.dsx, (float8)(1e30f), fabs(r.dsx) < 1e-12f);
+  p->iy = select(1.0f / r.dsy, (float8)(1e30f), fabs(r.dsy) < 1e-12f);
+  p->px = select((int8)(0), (int8)(1), p->ix > 0.0f);
+  p->py = select((int8)(0), (int8)(1), p->iy > 0.0f);
   p->deeper = r.q0z * r.dqw - r.dqz * r.q0w > 0.0f;
-  p->t = cell_exit8(&p->r, (float8)(0.0f), p->nudge, (float8)(1.0f), &p->cx, &p->cy);
-  p->mip = p->hit_x = p->hit_y = 0;
+  const int8 x = convert_int8(floor(r.s0x)), y = convert_int8(floor(r.s0y));
+  const float8 tx = (convert_float8(x + p->px) - r.s0x) * p->ix, ty = (convert_float8(y + p->py) - r.s0y) * p->iy;
+  const int8 step_x = tx <= ty;
+  p->cx = select(x, x + 2 * p->px - 1, step_x);
+  p->cy = select(y + 2 * p->py - 1, y, step_x);
+  p->t = fmin(tx, ty);
+  p->d_t = -(r.q0z + p->t * r.dqz) / (r.q0w + p->t * r.dqw);
+  p->level = p->hit_x = p->hit_y = 0;
   p->t_hit = -1.0f;
   p->active = vload8(0, live) != 0;
 }
@@ -376,71 +382,72 @@ inline void packet_begin(Packet8* p, const TraceScene* sc, const ScreenRay* rays
 // One step of the packet's live lanes; false once none is left.
 inline bool packet_step(Packet8* p, const TraceScene* sc) {
   const int top = sc->level_count - 1;
-  const bool back_skip = SSRCL_BACK_SKIP;
   p->active &= (p->iterations < sc->max_iterations) & (p->t <= 1.0f);
   if (!any_lane(p->active)) return false;
-  float8 t_exit = cell_exit8(&p->r, p->t, p->nudge, convert_float8((int8)(1) << p->mip), &p->cx, &p->cy);
-  int8 fine = p->active & (p->mip == 0);
-  // Each side's texels are read only where a lane needs them.
-  int8 in_front = 0, hit = 0;
-  if (any_lane(fine)) {
-    int8 past_now, entered_now = 0;
+  const float8 size = as_float8((p->level + 127) << 23);  // cell_size
+  const float8 tx = (convert_float8(p->cx + p->px) * size - p->r.s0x) * p->ix;
+  const float8 ty = (convert_float8(p->cy + p->py) * size - p->r.s0y) * p->iy;
+  const float8 t_exit = fmin(tx, ty), t_end = fmin(t_exit, 1.0f);
+  const float8 d_end = -(p->r.q0z + t_end * p->r.dqz) / (p->r.q0w + t_end * p->r.dqw);
+  // cell_range: a level is ceil(fine / 2) of the one below (stage_support.cpp), its size by shifts,
+  // its offset (the records' first field) by one gather.
+  const int8 width = ((int8)(sc->size.x) + ((int8)(1) << p->level) - 1) >> p->level;
+  const int8 height = ((int8)(sc->size.y) + ((int8)(1) << p->level) - 1) >> p->level;
+  const int record = sizeof(HzbLevel) / sizeof(int);
+  const int8 texel = as_int8(gather8((__global const float*)sc->levels, p->level * record)) +
+                     clamp(p->cy, 0, height - 1) * width + clamp(p->cx, 0, width - 1);
+#if SSRCL_BACK_SKIP
+  float8 hi;
+  const float8 lo = gather8_xy(sc->range, texel, &hi);
+#else
+  const float8 lo = gather8(sc->hzb, texel), hi = INFINITY;
+#endif
+  p->fetches -= p->active;
+  const int8 meets = p->active & (fmax(p->d_t, d_end) >= lo) & (fmin(p->d_t, d_end) <= hi);
+  const int8 fine = p->level == 0;
+  int8 hit = 0, stay = 0;
+  // On whether any lane is fine, known before the range texel arrives: a branch on the texel
+  // would wait for it (5% of the trace).
+  if (any_lane(fine & p->active)) {
+    const int8 test = fine & (SSRCL_VIEWS ? p->active : meets);
+    int8 in_front, past_now, entered_now = 0;
     float8 g_past, guess;
-    float8 t_pixel = hit_pixel8(sc, &p->r, p->dx, p->dy, p->dz, p->cx, p->cy, p->t, fmin(t_exit, 1.0f), fine, &in_front,
+    float8 t_pixel = hit_pixel8(sc, &p->r, p->dx, p->dy, p->dz, p->cx, p->cy, p->t, t_end, test, &in_front,
                                 &p->seen, &p->behind, &p->thick, &p->hidden, &past_now, &g_past, &entered_now, &guess);
 #if SSRCL_BACK_KNOWN
     note_past_back8(&p->r, past_now, g_past, guess, p->cx, p->cy, p->t, &p->past, &p->past_t, &p->past_x, &p->past_y);
 #endif
-    hit = fine & (t_pixel >= 0.0f);
+    p->fetches -= test;
+    hit = test & (t_pixel >= 0.0f);
+    stay = test & ~in_front & (d_end <= hi);
     p->entered |= hit & entered_now;
     p->t_hit = select(p->t_hit, t_pixel, hit);
     p->hit_x = select(p->hit_x, p->cx, hit);
     p->hit_y = select(p->hit_y, p->cy, hit);
   }
-  // The HZB's texel where a lane is coarse; the back pyramid's where it may skip or climb
-  // (behind_back's reads).
-  int8 coarse = p->active & ~fine;
-  float8 depth_t = -(p->r.q0z + p->t * p->r.dqz) / (p->r.q0w + p->t * p->r.dqw);
-  float8 t_end = fmin(t_exit, 1.0f);
-  float8 depth_exit = -(p->r.q0z + t_end * p->r.dqz) / (p->r.q0w + t_end * p->r.dqw);
-  float8 d_min = 0.0f, d_back = INFINITY;
-  int8 back_reads = 0;
-  const int8 climbing = back_skip ? fine & ~hit & ~in_front : 0;  // a fine lane's climb reads it
-  if (any_lane(coarse | climbing)) {
-    // A level is ceil(fine / 2) of the one below (stage_support.cpp): its size by shifts, its
-    // offset (the records' first field) by one gather.
-    int8 width = ((int8)(sc->size.x) + ((int8)(1) << p->mip) - 1) >> p->mip;
-    int8 height = ((int8)(sc->size.y) + ((int8)(1) << p->mip) - 1) >> p->mip;
-    const int record = sizeof(HzbLevel) / sizeof(int);
-    int8 texel = as_int8(gather8((__global const float*)sc->levels, p->mip * record)) +
-                 clamp(p->cy, 0, height - 1) * width + clamp(p->cx, 0, width - 1);
-    // The range pyramid holds the HZB's depth beside the farthest hit: one record a texel.
-    if (back_skip) {
-      d_min = gather8_xy(sc->range, texel, &d_back);
-      back_reads = climbing;
-    } else if (any_lane(coarse)) {
-      d_min = gather8(sc->hzb, texel);
-    }
-  }
-  int8 front = depth_t < d_min;
-  float8 denom = p->r.dqz + d_min * p->r.dqw;
-  float8 t_cross = -(p->r.q0z + d_min * p->r.q0w) / denom;
-  t_cross =
-      select((float8)(INFINITY), t_cross, (denom != 0.0f) & isfinite(t_cross) & p->deeper & (d_min < SSRCL_NO_SURFACE));
-  int8 cross = front & (t_cross <= t_exit);
-
-  float8 t_next = select(select(p->t, t_exit, front), fmax(p->t, t_cross), cross);
-  int8 mip_next = select(p->mip - 1, min(p->mip + 1, top), front & ~cross);
-  int8 skip = coarse & (depth_t >= d_min) & (fmin(depth_t, depth_exit) > d_back);
-  t_next = select(t_next, t_exit, skip);
-  mip_next = select(mip_next, min(p->mip + 1, top), skip);
-  t_next = select(t_next, t_exit, fine);
-  mip_next = select(mip_next, select((int8)(0), (int8)(min(1, top)), in_front | (depth_exit > d_back)), fine);
-  p->fetches -= p->active;
-  p->fetches -= back_reads;
+  // A coarse cell the ray meets: its child at t, or where the ray reaches the near end.
+  const int8 descend = meets & ~fine;
+  const float8 t_cross = -(p->r.q0z + lo * p->r.q0w) / (p->r.dqz + lo * p->r.dqw);
+  const int8 crossing = (p->d_t < lo) & p->deeper & isfinite(t_cross);
+  const float8 t_down = select(p->t, fmax(p->t, fmin(t_cross, t_end)), crossing);
+  const float8 half_size = 0.5f * size;
+  const int8 cx2 = p->cx + p->cx, cy2 = p->cy + p->cy;
+  const float8 mid_x = (convert_float8(cx2 + 1) * half_size - p->r.s0x) * p->ix;
+  const float8 mid_y = (convert_float8(cy2 + 1) * half_size - p->r.s0y) * p->iy;
+  const int8 child_x = cx2 + select(p->px ^ 1, p->px, t_down >= mid_x);
+  const int8 child_y = cy2 + select(p->py ^ 1, p->py, t_down >= mid_y);
+  // Any other live lane: the next cell along, up as many levels as it leaves parents.
+  const int8 move = p->active & ~hit & ~descend;
+  const int8 step_x = tx <= ty;
+  int8 next_x = select(p->cx, p->cx + 2 * p->px - 1, step_x), next_y = select(p->cy + 2 * p->py - 1, p->cy, step_x);
+  int8 up = min(min(31 - clz((next_x ^ p->cx) | (next_y ^ p->cy)), 2), top - p->level);
+  up = select(up, 0, stay);
+  p->cx = select(select(p->cx, child_x, descend), next_x >> up, move);
+  p->cy = select(select(p->cy, child_y, descend), next_y >> up, move);
+  p->level = select(select(p->level, p->level - 1, descend), p->level + up, move);
+  p->d_t = select(select(p->d_t, select(p->d_t, lo, crossing), descend), d_end, move);
+  p->t = select(select(p->t, t_down, descend), t_exit, move);
   p->active &= ~hit;
-  p->t = select(p->t, t_next, p->active);
-  p->mip = select(p->mip, mip_next, p->active);
   p->iterations -= p->active;
   return true;
 }

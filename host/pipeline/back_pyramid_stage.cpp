@@ -25,6 +25,7 @@ void BackPyramidStage::bind(const FrameResources& resources) {
   bindArgs(level0_, 1, "hzb, planes, guess, guessed, range", resources.read(access, Role::DepthPyramid),
            resources.read(access, Role::Planes), resources.read(access, Role::BackGuess), cl_int(guessed_), back);
   bindArgs(reduce_, 0, "pyramid, levels", back, resources.read(access, Role::PyramidLevels));
+  bindArgs(reduce_, 3, "hzb", resources.read(access, Role::DepthPyramid));  // 2: the level, per pass
 }
 
 void BackPyramidStage::enqueue(cl::CommandQueue& q, const FrameConstants& frame, StageEvents& events) {

@@ -1,8 +1,8 @@
 #pragma once
-// The range pyramid (kernels/back_pyramid.cl): per texel the HZB's nearest depth and the farthest
-// depth at which a ray over its pixels can hit a surface, from the final surface planes (after the
-// thickness stage), reduced to the HZB's levels. The Hi-Z trace skips what a ray passes wholly
-// behind, reading both ends of a texel at once.
+// The range pyramid (kernels/back_pyramid.cl): per texel the nearest and the farthest depth at
+// which a ray over its pixels can hit a surface, from the final surface planes (after the
+// thickness stage), the nearest of coarse levels the HZB's. The Hi-Z trace skips what a ray passes
+// wholly in front or behind, reading both ends of a texel at once.
 #include "frame_resources.hpp"
 
 namespace ssrcl::detail {
