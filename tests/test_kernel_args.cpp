@@ -45,6 +45,23 @@ TEST(KernelArgs, SwappedMissingOrExtraArgumentsAreRefusedByName) {
   EXPECT_EQ(refusal(k, 0, "pyramid, levels", 3), "kernel depth_reduce: the host binds 3 arguments but names 2");
 }
 
+// A per-frame argument is found by its name in the list its stage binds: the index the kernel
+// declares it at, and a name the list lacks refused, not set at some other index.
+TEST(KernelArgs, AnArgumentIsFoundByItsNameInTheBoundList) {
+  const ssrcl::detail::KernelArgList list{1, "levels, dst_level"};
+  const cl::Kernel k = hzbKernel();
+  EXPECT_EQ(refusal(k, list.first, list.names, 2), "");
+  EXPECT_EQ(list["levels"], 1u);
+  EXPECT_EQ(list["dst_level"], 2u);
+  try {
+    (void)list["pyramid"];
+    ADD_FAILURE() << "an argument the list does not name was given an index";
+  } catch (const ssrcl::Error& e) {
+    EXPECT_EQ(e.code(), ssrcl::ErrorCode::InvalidOperation);
+    EXPECT_STREQ(e.what(), "no kernel argument 'pyramid' among levels, dst_level");
+  }
+}
+
 // Every stage binds through the check, and from the frame resource table only the roles it
 // declares (host/pipeline/frame_resources.hpp): each configuration binds a different set (the
 // filter's input or the outputs, hit counts, views, the environment), and every one commits and

@@ -2,6 +2,16 @@
 
 namespace ssrcl::detail {
 
+namespace {
+
+// The setup kernel's arguments after its parameters; the input passes are set again each frame.
+const KernelArgList kSetupArgs{
+    1,
+    "color_in, depth_in, normal_in, roughness_in, position_out, hzb_out, normal_out, color_out, pixel_rays, "
+    "ray_list, tile_list, ray_count, plane_out, fill_normal_out"};
+
+}  // namespace
+
 // Level 0 of both pyramids is setup's: the HZB and colour pyramid stages reduce the rest.
 const StageAccess SetupStage::access{"setup",
                                      {},
@@ -38,10 +48,7 @@ void SetupStage::bind(const FrameResources& resources) {
   // Argument 0 is the parameter block, set at each enqueue. HZB and colour level 0 start at
   // offset 0 of their buffers.
   auto out = [&](Role role) { return resources.write(access, role); };
-  bindArgs(kernel_, 1,
-           "color_in, depth_in, normal_in, roughness_in, position_out, hzb_out, normal_out, color_out, pixel_rays, "
-           "ray_list, tile_list, ray_count, plane_out, fill_normal_out",
-           colorIn_.own(), depthIn_.own(), normalIn_.own(), roughnessIn_.own(), out(Role::Positions), out(Role::DepthPyramid),
+  bindArgs(kernel_, kSetupArgs, colorIn_.own(), depthIn_.own(), normalIn_.own(), roughnessIn_.own(), out(Role::Positions), out(Role::DepthPyramid),
            out(Role::Normals), out(Role::ColorPyramid), out(Role::PixelRays), out(Role::RayList), out(Role::TileList),
            counts_, out(Role::Planes), out(Role::FillNormals));
 }
@@ -63,11 +70,11 @@ SetupParams SetupStage::params(const FrameConstants& frame, const TraceSettings&
 
 void SetupStage::enqueue(cl::CommandQueue& q, const Inputs& in, const SetupParams& params, StageEvents& events) {
   const size_t pixels = frame_.pixels();
-  // Arguments 1-4 (bind): this frame's passes.
-  kernel_.setArg(1, colorIn_.put(q, in.color, pixels * colorChannels_ * sizeof(float), events));
-  kernel_.setArg(2, depthIn_.put(q, in.depth, pixels * sizeof(float), events));
-  kernel_.setArg(3, normalIn_.put(q, in.normal, pixels * 3 * sizeof(float), events));
-  kernel_.setArg(4, roughnessIn_.put(q, in.roughness, pixels * sizeof(float), events));
+  // This frame's passes.
+  kernel_.setArg(kSetupArgs["color_in"], colorIn_.put(q, in.color, pixels * colorChannels_ * sizeof(float), events));
+  kernel_.setArg(kSetupArgs["depth_in"], depthIn_.put(q, in.depth, pixels * sizeof(float), events));
+  kernel_.setArg(kSetupArgs["normal_in"], normalIn_.put(q, in.normal, pixels * 3 * sizeof(float), events));
+  kernel_.setArg(kSetupArgs["roughness_in"], roughnessIn_.put(q, in.roughness, pixels * sizeof(float), events));
   q.enqueueFillBuffer(counts_, cl_int(0), 0, SSRCL_COUNTERS * sizeof(cl_int), nullptr, newEvent(events, "upload"));
   SetupParams planned = params;
   planned.fill_normals = fillNormals_;

@@ -103,10 +103,26 @@ int resolvedRays(const TraceSettings& s) {
   return s.samplesPerPixel * (2 * s.reuseRadius + 1) * (2 * s.reuseRadius + 1);
 }
 
-void checkKernelArgs(const cl::Kernel& kernel, cl_uint first, const char* names, size_t count) {
-  std::vector<std::string> expected;
+namespace {
+
+std::vector<std::string> argNames(const char* names) {
+  std::vector<std::string> out;
   std::istringstream list(names);
-  for (std::string name; std::getline(list, name, ',');) expected.push_back(name.substr(name.find_first_not_of(' ')));
+  for (std::string name; std::getline(list, name, ',');) out.push_back(name.substr(name.find_first_not_of(' ')));
+  return out;
+}
+
+}  // namespace
+
+cl_uint KernelArgList::operator[](const std::string& name) const {
+  const std::vector<std::string> all = argNames(names);
+  for (size_t k = 0; k < all.size(); ++k)
+    if (all[k] == name) return first + cl_uint(k);
+  throw Error(ErrorCode::InvalidOperation, "no kernel argument '" + name + "' among " + names);
+}
+
+void checkKernelArgs(const cl::Kernel& kernel, cl_uint first, const char* names, size_t count) {
+  const std::vector<std::string> expected = argNames(names);
   const std::string kernelName = kernel.getInfo<CL_KERNEL_FUNCTION_NAME>().c_str();
   if (expected.size() != count)
     throw Error(ErrorCode::InvalidOperation, "kernel " + kernelName + ": the host binds " + std::to_string(count) +

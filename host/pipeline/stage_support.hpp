@@ -88,6 +88,21 @@ void bindArgs(cl::Kernel& kernel, cl_uint first, const char* names, const Args&.
   (kernel.setArg(index++, args), ...);
 }
 
+// A kernel's arguments from `first` on as the host binds them (bindArgs), and where one of them
+// lies by name: an argument set again each frame (the frame's own input passes) is set at
+// args["depth_in"], so it stays in step with the checked binding. An unknown name throws
+// Error(InvalidOperation).
+struct KernelArgList {
+  cl_uint first;
+  const char* names;
+  cl_uint operator[](const std::string& name) const;
+};
+
+template <class... Args>
+void bindArgs(cl::Kernel& kernel, const KernelArgList& list, const Args&... args) {
+  bindArgs(kernel, list.first, list.names, args...);
+}
+
 size_t roundUp(size_t n, size_t multiple);
 void toRowMajor(const glm::dmat4& m, float out[16]);
 // The SSRCL_ROUGHNESS_MAPPING define of programs that map roughness to GGX alpha.

@@ -2,6 +2,13 @@
 
 namespace ssrcl::detail {
 
+namespace {
+
+// known_thickness's arguments after its parameters; the back-face depth is set again each frame.
+const KernelArgList kKnownArgs{1, "positions, back, planes, guess"};
+
+}  // namespace
+
 const StageAccess ThicknessStage::access{"thickness", {Role::Positions}, {Role::Planes, Role::BackGuess}};
 
 void ThicknessStage::configure(Device::Impl& device, const TraceSettings& s, bool backDepth) {
@@ -26,7 +33,7 @@ void ThicknessStage::bind(const FrameResources& resources) {
     bindArgs(kernel_, 1, "positions, row, planes", resources.read(access, Role::Positions), rowRuns_,
              resources.write(access, Role::Planes));
   if (backDepth_)
-    bindArgs(known_, 1, "positions, back, planes, guess", resources.read(access, Role::Positions), back_.own(),
+    bindArgs(known_, kKnownArgs, resources.read(access, Role::Positions), back_.own(),
              resources.write(access, Role::Planes), resources.write(access, Role::BackGuess));
 }
 
@@ -40,7 +47,7 @@ void ThicknessStage::enqueue(cl::CommandQueue& q, const FrameConstants& frame, c
                            cl::NDRange(16), nullptr, newEvent(events, "thickness"));
   }
   if (!backDepth_) return;
-  known_.setArg(2, back_.put(q, backDepth, frame_.pixels() * sizeof(float), events));  // "back" (bind)
+  known_.setArg(kKnownArgs["back"], back_.put(q, backDepth, frame_.pixels() * sizeof(float), events));
   known_.setArg(0, p);
   q.enqueueNDRangeKernel(known_, cl::NullRange, cl::NDRange(roundUp(frame_.pixels(), 64)), cl::NDRange(64),
                          nullptr, newEvent(events, "thickness"));

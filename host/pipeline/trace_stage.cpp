@@ -8,6 +8,7 @@
 #include "shading/specular_albedo_tables.hpp"
 
 namespace ssrcl::detail {
+
 std::string tracerDefine(Tracer t) {
   return t == Tracer::Linear ? "SSRCL_TRACER=SSRCL_TRACER_LINEAR"
          : t == Tracer::DDA  ? "SSRCL_TRACER=SSRCL_TRACER_DDA"
@@ -15,6 +16,12 @@ std::string tracerDefine(Tracer t) {
 }
 
 namespace {
+
+// trace_rays's arguments after its parameters; the material passes are set again each frame.
+const KernelArgList kTraceArgs{
+    1,
+    "hzb, range, levels, positions, normals, ray_list, pixel_rays, planes, guess, work_counters, color_pyramid, "
+    "base, specular, f0, albedo, ray_hit, ray_radiance, ray_state"};
 
 // Ray records of all samples when they fit in this budget, else fewer samples per batch (the
 // resolve accumulates across batches; prefiltered hits are weighted by their own batch's hits,
@@ -82,10 +89,7 @@ void TraceStage::plan(FrameResources& resources, DeviceBuffers& buffers, const F
 void TraceStage::bind(const FrameResources& resources) {
   auto in = [&](Role role) { return resources.read(access, role); };
   auto out = [&](Role role) { return resources.write(access, role); };
-  bindArgs(kernel_, 1,
-           "hzb, range, levels, positions, normals, ray_list, pixel_rays, planes, guess, work_counters, color_pyramid, "
-           "base, specular, f0, albedo, ray_hit, ray_radiance, ray_state",
-           in(Role::DepthPyramid), in(Role::BackPyramid), in(Role::PyramidLevels), in(Role::Positions), in(Role::Normals), in(Role::RayList),
+  bindArgs(kernel_, kTraceArgs, in(Role::DepthPyramid), in(Role::BackPyramid), in(Role::PyramidLevels), in(Role::Positions), in(Role::Normals), in(Role::RayList),
            in(Role::PixelRays), in(Role::Planes), in(Role::BackGuess), workCounters_, in(Role::ColorPyramid), baseIn_.own(),
            specularIn_.own(), f0In_.own(), albedoTable_, out(Role::RayHits), out(Role::RayRadiance), out(Role::RayStates));
 }
@@ -113,12 +117,12 @@ void TraceStage::upload(cl::CommandQueue& q, const float* base, const float* spe
     q.enqueueFillBuffer(workCounters_, cl_int(0), 0, (SSRCL_FETCH_SLOTS + SSRCL_HISTOGRAM_BINS) * sizeof(cl_int),
                         nullptr, newEvent(events, "upload"));
   if (!hasBase_) return;
-  // Arguments 12-14 (bind): this frame's passes.
+  // This frame's passes.
   const size_t bytes = frame_.pixels() * 3 * sizeof(float);
-  kernel_.setArg(12, baseIn_.put(q, base, bytes, events));
-  kernel_.setArg(13, specularIn_.put(q, specular, bytes, events));
+  kernel_.setArg(kTraceArgs["base"], baseIn_.put(q, base, bytes, events));
+  kernel_.setArg(kTraceArgs["specular"], specularIn_.put(q, specular, bytes, events));
   if (!materials_) return;
-  kernel_.setArg(14, f0In_.put(q, f0, bytes, events));
+  kernel_.setArg(kTraceArgs["f0"], f0In_.put(q, f0, bytes, events));
   q.enqueueWriteBuffer(albedoTable_, CL_FALSE, 0, kAlbedoEntries * sizeof(cl_float2), albedoTable().data(), nullptr,
                        newEvent(events, "upload"));
 }
