@@ -402,7 +402,7 @@ inline bool packet_step(Packet8* p, const TraceScene* sc) {
 #else
   const float8 lo = gather8(sc->hzb, texel), hi = INFINITY;
 #endif
-  p->fetches -= p->active;
+  if (SSRCL_COUNT_WORK) p->fetches -= p->active;  // counted only where they are read
   const int8 meets = p->active & (fmax(p->d_t, d_end) >= lo) & (fmin(p->d_t, d_end) <= hi);
   const int8 fine = p->level == 0;
   int8 hit = 0, stay = 0;
@@ -412,15 +412,23 @@ inline bool packet_step(Packet8* p, const TraceScene* sc) {
     const int8 test = fine & (SSRCL_VIEWS ? p->active : meets);
     int8 in_front, past_now, entered_now = 0;
     float8 g_past, guess;
-    float8 t_pixel = hit_pixel8(sc, &p->r, p->dx, p->dy, p->dz, p->cx, p->cy, p->t, t_end, test, &in_front,
-                                &p->seen, &p->behind, &p->thick, &p->hidden, &past_now, &g_past, &entered_now, &guess);
+    // The views' records, kept in the packet only where views read them (else left for dead here).
+    int8 seen = p->seen, behind = p->behind, thick = p->thick, hidden = p->hidden;
+    float8 t_pixel = hit_pixel8(sc, &p->r, p->dx, p->dy, p->dz, p->cx, p->cy, p->t, t_end, test, &in_front, &seen,
+                                &behind, &thick, &hidden, &past_now, &g_past, &entered_now, &guess);
+#if SSRCL_VIEWS
+    p->seen = seen;
+    p->behind = behind;
+    p->thick = thick;
+    p->hidden = hidden;
+#endif
 #if SSRCL_BACK_KNOWN
     note_past_back8(&p->r, past_now, g_past, guess, p->cx, p->cy, p->t, &p->past, &p->past_t, &p->past_x, &p->past_y);
 #endif
-    p->fetches -= test;
+    if (SSRCL_COUNT_WORK) p->fetches -= test;
     hit = test & (t_pixel >= 0.0f);
     stay = test & ~in_front & (d_end <= hi);
-    p->entered |= hit & entered_now;
+    if (SSRCL_BACK_KNOWN) p->entered |= hit & entered_now;
     p->t_hit = select(p->t_hit, t_pixel, hit);
     p->hit_x = select(p->hit_x, p->cx, hit);
     p->hit_y = select(p->hit_y, p->cy, hit);
