@@ -119,5 +119,6 @@ __kernel void range_reduce(__global float2* pyramid, __global const HzbLevel* le
   if (!reduce_cell(levels, dst_level, x, y, &c)) return;
   int4 i = cell_texel_indices(&c);
   const int dst = c.dst.offset + y * c.dst.width + x;
-  pyramid[dst] = (float2)(hzb[dst], fmax(fmax(pyramid[i.x].y, pyramid[i.y].y), fmax(pyramid[i.z].y, pyramid[i.w].y)));
+  float2 a = pyramid[i.x], b = pyramid[i.y], d = pyramid[i.z], e = pyramid[i.w];
+  pyramid[dst] = (float2)(hzb[dst], fmax(fmax(a.y, b.y), fmax(d.y, e.y)));
 }

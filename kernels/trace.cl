@@ -282,10 +282,13 @@ inline float8 plane_side8(const ScreenRays8* r, float8 t, float8 px, float8 py, 
   return dot_lanes(qx, qy, qz, px, py, pz) - qw * pw;
 }
 
-// hit_pixel per lane, for the lanes in `lanes` (the others' results are not used).
-inline float8 hit_pixel8(const TraceScene* sc, const ScreenRays8* r, float8 dx, float8 dy, float8 dz, int8 cx,
-                         int8 cy, float8 t_in, float8 t_out, int8 lanes, int8* in_front, int8* seen, int8* behind,
-                         int8* thick, int8* hidden, int8* past, float8* g_past, int8* entered, float8* guess) {
+// hit_pixel per lane, for the lanes in `lanes` (the others' results are not used). Inlined into the
+// packet step, as scattered_record_lanes is (PoCL's inliner left both calls).
+__attribute__((always_inline)) inline float8 hit_pixel8(const TraceScene* sc, const ScreenRays8* r, float8 dx,
+                                                       float8 dy, float8 dz, int8 cx, int8 cy, float8 t_in,
+                                                       float8 t_out, int8 lanes, int8* in_front, int8* seen,
+                                                       int8* behind, int8* thick, int8* hidden, int8* past,
+                                                       float8* g_past, int8* entered, float8* guess) {
   int8 q = clamp(cy, 0, sc->size.y - 1) * sc->size.x + clamp(cx, 0, sc->size.x - 1);
   const RecordLanes plane = scattered_record_lanes(sc->planes, q);
   const float8 px = plane.x, py = plane.y, pz = plane.z, pw = plane.w;
