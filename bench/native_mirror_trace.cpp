@@ -197,7 +197,7 @@ struct NativeMirrorTrace::Impl {
     return hzb[l.offset + cell.y * l.width + cell.x];
   }
 
-  // trace.cl cell_exit.
+  // trace.cl cell_exit, of cells of any size (trace.cl steps pixels with it, its Hi-Z integer cells).
   static float cellExit(const ScreenRay& r, float t, float nudge, float cellSize, glm::ivec2& cellOut) {
     const vec2 cell = glm::floor(r.screen(t + nudge) / cellSize);
     cellOut = glm::ivec2(cell);
@@ -244,7 +244,9 @@ struct NativeMirrorTrace::Impl {
     return -1.0f;
   }
 
-  // trace.cl trace_hiz.
+  // Hi-Z as trace.cl traced before it stepped integer cells: min-depth HZB, the cell found from
+  // the ray's position, one level a climb. Another traversal than today's trace_hiz with the same
+  // hit test, so agreeing hits check the traversal, not a copy of it.
   float traceHiz(const ScreenRay& ray, vec3 dir) const {
     const int levelCount = int(levels.size());
     const float nudge = 0.01f / std::max(std::fabs(ray.ds.x), std::fabs(ray.ds.y));

@@ -52,10 +52,6 @@ inline int pyramid_index(__global const HzbLevel* levels, int level, int2 cell) 
   return l.offset + cell.y * l.width + cell.x;
 }
 
-inline float hzb_fetch(__global const float* hzb, __global const HzbLevel* levels, int level, int2 cell) {
-  return hzb[pyramid_index(levels, level, cell)];
-}
-
 // The fine texels that the pyramids' reductions (hzb.cl, back_pyramid.cl, color_pyramid.cl)
 // combine into texel (x, y) of level dst_level: x0..x1, y0..y1 of the level below, clamped at its
 // edge (a coarse level is ceil(fine / 2), so an edge texel may cover one fine column or row).

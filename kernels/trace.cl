@@ -41,13 +41,14 @@ inline float4 ray_q(const ScreenRay* r, float t) { return r->q0 + t * r->dq; }
 inline float3 ray_point(const ScreenRay* r, float t) { float4 q = ray_q(r, t); return q.xyz / q.w; }
 inline float2 ray_screen(const ScreenRay* r, float t) { return r->s0 + t * r->ds; }
 
-// Parameter where the ray leaves the cell of `cell_size` pixels it occupies just after t. The
-// cell is looked up slightly ahead of t so a ray sitting on a boundary counts as having crossed it.
-inline float cell_exit(const ScreenRay* r, float t, float nudge, float cell_size, int2* cell_out) {
+// Parameter where the ray leaves the pixel it occupies just after t (the reference tracers'
+// step). The pixel is looked up slightly ahead of t so a ray sitting on a boundary counts as
+// having crossed it.
+inline float cell_exit(const ScreenRay* r, float t, float nudge, int2* cell_out) {
   float2 p = ray_screen(r, t + nudge);
-  float2 cell = floor(p / cell_size);
+  float2 cell = floor(p);
   *cell_out = convert_int2(cell);
-  float2 boundary = (cell + select((float2)(0.0f), (float2)(1.0f), isgreater(r->ds, (float2)(0.0f)))) * cell_size;
+  float2 boundary = cell + select((float2)(0.0f), (float2)(1.0f), isgreater(r->ds, (float2)(0.0f)));
   float2 tb = (boundary - r->s0) / r->ds;
   tb = select(tb, (float2)(INFINITY), isless(fabs(r->ds), (float2)(1e-12f)));
   return fmin(tb.x, tb.y);
@@ -528,7 +529,7 @@ inline void trace_hiz_packets(TraceScene* sc, const ScreenRay* rays, const float
 inline float trace_linear(TraceScene* sc, const ScreenRay* ray, float3 dir, float step_pixels, int2* hit_cell) {
   float major = fmax(fabs(ray->ds.x), fabs(ray->ds.y));
   int2 cell;
-  float t_prev = cell_exit(ray, 0.0f, 0.01f / major, 1.0f, &cell);  // leave the origin pixel first
+  float t_prev = cell_exit(ray, 0.0f, 0.01f / major, &cell);  // leave the origin pixel first
   float dt = step_pixels / major;
   int steps = min((int)ceil((1.0f - t_prev) / dt), sc->max_iterations);
   for (int k = 1; k <= steps; ++k, ++sc->iterations) {
@@ -551,9 +552,9 @@ inline float trace_linear(TraceScene* sc, const ScreenRay* ray, float3 dir, floa
 inline float trace_dda(TraceScene* sc, const ScreenRay* ray, float3 dir, int2* hit_cell) {
   float nudge = 0.01f / fmax(fabs(ray->ds.x), fabs(ray->ds.y));
   int2 cell;
-  float t = cell_exit(ray, 0.0f, nudge, 1.0f, &cell);  // leave the origin pixel first
+  float t = cell_exit(ray, 0.0f, nudge, &cell);  // leave the origin pixel first
   for (; sc->iterations < sc->max_iterations && t <= 1.0f; ++sc->iterations) {
-    float t_exit = cell_exit(ray, t, nudge, 1.0f, &cell);
+    float t_exit = cell_exit(ray, t, nudge, &cell);
     bool in_front;
     float t_hit = hit_pixel(sc, ray, dir, cell, t, fmin(t_exit, 1.0f), &in_front);
     if (t_hit >= 0.0f) {
