@@ -15,7 +15,8 @@ scripts/render-shots.sh runs both (out/shots by default; never committed). Write
 
 Each frame has its own seed: the references' noise is independent from frame to frame, as it is
 between two renders of one frame, so the second seed of frame 1 measures the noise that the
-temporal metric sees in the references (scored by bench/score_shots).
+temporal metric sees in the references (scored by bench/score_shots). A rerun into the same
+outdir skips the frames already written, so an interrupted render resumes.
 
 Shots (camera moves small enough that every frame sees most of its neighbours' surfaces):
   living_truck  living_room (interior), camera trucks sideways 4 cm a frame
@@ -120,8 +121,11 @@ def render_cycles(shot, outdir):
         place(shot, scene, 1 if second else frame)
         scene.cycles.seed = SECOND_SEED if second else frame
         stem = "%s.%04d" % (shot["name"], 1 if second else frame)
+        frame_dir = os.path.join(d, "seed2") if second else d
+        if os.path.exists(os.path.join(frame_dir, stem + ".camera.json")):
+            continue  # written by an earlier, interrupted run (the camera is written last)
         start = time.perf_counter()
-        exr = render_and_write(scene, os.path.join(d, "seed2") if second else d, stem)[0]
+        exr = render_and_write(scene, frame_dir, stem)[0]
         if shutil.which("oiiotool"):  # halves the files; they stay out of git either way
             real.compact_exr(exr)
         print("SHOT %s %s: %d samples, %.1f s" % (shot["name"], os.path.relpath(exr, outdir),
@@ -146,6 +150,8 @@ def render_peer(shot, outdir):
     for frame in range(1, FRAMES + 1):
         place(shot, scene, frame)
         scene.render.filepath = os.path.join(d, "%s.%04d.exr" % (shot["name"], frame))
+        if os.path.exists(scene.render.filepath):
+            continue  # written by an earlier, interrupted run
         start = time.perf_counter()
         bpy.ops.render.render(write_still=True)
         print("EEVEE %s %04d: %.1f s" % (shot["name"], frame, time.perf_counter() - start),
