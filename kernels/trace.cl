@@ -939,8 +939,9 @@ __kernel void trace_rays(TraceParams params, __global const float* hzb, __global
       // one second ray shows there as noise (mirror sample: floor within 25% of Cycles 0.90 -> 0.74).
       float4 nq = normals[q];
       bool bounce = !mirror || nq.w <= mirror_roughness;
+      // `|`, not `||`: `&& (1 || bounce)` is constant, which the compiler warned of at every build.
       hit_glossy[k] = !black && !prefiltered && params.has_base && nq.w < params.glossy_hit_roughness &&
-                      (SSRCL_MATERIAL_HITS || bounce);
+                      (SSRCL_MATERIAL_HITS | bounce);
       if (hit_glossy[k] && bounce)
         second.live[k] = bounce_ray(proj, size, near_plane, far_plane, mirror_roughness, hit, dir, nq,
                                     fmax(roughness_to_alpha(nq.w, SSRCL_ROUGHNESS_MAPPING), 1e-4f), q, sample, seed,
