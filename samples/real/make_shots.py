@@ -149,11 +149,13 @@ def render_peer(shot, outdir):
     scene.render.use_file_extension = False
     for frame in range(1, FRAMES + 1):
         place(shot, scene, frame)
-        scene.render.filepath = os.path.join(d, "%s.%04d.exr" % (shot["name"], frame))
-        if os.path.exists(scene.render.filepath):
+        path = os.path.join(d, "%s.%04d.exr" % (shot["name"], frame))
+        if os.path.exists(path):
             continue  # written by an earlier, interrupted run
+        scene.render.filepath = path + ".tmp.exr"  # renamed once whole: a killed write is not skipped
         start = time.perf_counter()
         bpy.ops.render.render(write_still=True)
+        os.replace(scene.render.filepath, path)
         print("EEVEE %s %04d: %.1f s" % (shot["name"], frame, time.perf_counter() - start),
               flush=True)
 
