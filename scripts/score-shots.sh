@@ -38,7 +38,10 @@ declare -A args=(
   [draft-batch]="--quality draft"  # the batch defaults (--temporal 3, --neighbours 1 reaching 12)
   [medium-batch]="--quality medium"
   [high-batch]="--quality high"
-  [medium-t5-batch]="--quality medium --temporal 5"  # the batch defaults with a wider window
+  [medium-t3-batch]="--quality medium --temporal 3"  # the batch defaults with another window
+  [medium-t4-batch]="--quality medium --temporal 4"
+  [medium-t5-batch]="--quality medium --temporal 5"
+  [medium-t6-batch]="--quality medium --temporal 6"
   [medium-t8-batch]="--quality medium --temporal 8"
   [medium-frameseeds]="--quality medium --temporal 0"  # each frame its own seed, as --temporal's
 )

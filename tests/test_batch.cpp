@@ -289,8 +289,9 @@ pid_t start(const std::vector<std::string>& args, const std::string& log) {
 }
 
 TEST_F(Batch, InterruptLeavesNoPartialFileAndARerunFinishes) {
-  // Slower frames (reference rays), so the signal lands with frames still to do.
-  const int total = 6;
+  // Slower frames (reference rays), so the signal lands with frames still to do: the first is
+  // written once the 6 frames of its window (--temporal 5) are traced.
+  const int total = 9;
   ssrcl::test::AnalyticSequence s;
   s.directory = dir.file("slow");
   s.frameCount = total;

@@ -114,8 +114,8 @@ TEST(ShotTemporal, WithNeighboursAShardEqualsTheWholeRun) {
   EXPECT_EQ(b.at(stem(2)), a.at(stem(2)));
 }
 
-// `ssrcl batch` blends by default (`--temporal 3`): a sharded default run equals the whole one,
-// which equals `--temporal 3` and differs from each frame alone.
+// `ssrcl batch` blends by default (`--temporal 5`): a sharded default run equals the whole one,
+// which equals `--temporal 5` and differs from each frame alone.
 TEST(ShotTemporal, TheDefaultBlendsAndShardsEqualTheWholeRun) {
   ssrcl::test::TempDir dir("ssrcl-shot-default");
   const std::string whole = dir.file("whole"), sharded = dir.file("sharded");
@@ -127,9 +127,9 @@ TEST(ShotTemporal, TheDefaultBlendsAndShardsEqualTheWholeRun) {
   const auto expected = outputs(whole);
   ASSERT_EQ(expected.size(), size_t(kFrames));
   EXPECT_EQ(outputs(sharded), expected);
-  const std::string three = dir.file("three"), alone = dir.file("alone");
-  ASSERT_EQ(runCommand(batch(three, "--temporal 3")).exitCode, 0);
-  EXPECT_EQ(outputs(three), expected);
+  const std::string five = dir.file("five"), alone = dir.file("alone");
+  ASSERT_EQ(runCommand(batch(five, "--temporal 5")).exitCode, 0);
+  EXPECT_EQ(outputs(five), expected);
   ASSERT_EQ(runCommand(batch(alone, "--temporal 0")).exitCode, 0);
   EXPECT_NE(outputs(alone), expected);
 }

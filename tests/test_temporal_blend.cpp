@@ -110,6 +110,33 @@ TEST(TemporalBlend, AveragesNoiseAtTheReflectedPoint) {
   EXPECT_LT(reprojected, unmoved / 5);
 }
 
+// Frames weigh 1 - d / (R + 1) by their distance d from the centre, R the window's longer side:
+// four takes of one frame (one camera, so every tap lands on its own pixel whole), each a constant
+// colour, the centre second (R = 2): 1, 2/3, 2/3 and 1/3 where the rays hit; the left quarter's
+// rays miss (distance 0) and keep the centre's take.
+TEST(TemporalBlend, FramesWeighLessTheFartherTheyAre) {
+  const float colour[4] = {1.0f, 1.2f, 1.4f, 1.6f};
+  std::vector<AnalyticFrame> frames(4, makeFrame(0, 0.0));
+  for (int j = 0; j < 4; ++j)
+    for (int y = 0; y < kH; ++y)
+      for (int x = 0; x < kW; ++x) {
+        for (int ch = 0; ch < 3; ++ch) frames[j].reflection.at(x, y, ch) = colour[j];
+        if (x < kW / 4) frames[j].distance.at(x, y, 0) = 0.0f;
+      }
+  const ssrcl::Image blended = ssrcl::temporalBlend(window(frames), 1, {});
+  const double expected =
+      (colour[1] + 2.0 / 3 * colour[0] + 2.0 / 3 * colour[2] + 1.0 / 3 * colour[3]) / (1.0 + 5.0 / 3);
+  int hits = 0, misses = 0;
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      const bool hit = frames[1].distance.at(x, y, 0) > 0.0f;
+      (hit ? hits : misses)++;
+      EXPECT_NEAR(blended.at(x, y, 0), hit ? expected : colour[1], 1e-5) << x << "," << y;
+    }
+  EXPECT_GT(hits, kW * kH / 4);
+  EXPECT_GT(misses, 0);
+}
+
 TEST(TemporalBlend, RefusesNeighboursWhoseHitsDisagree) {
   // Neighbours' hits on a ceiling twice as high: their hit distances are 100% off, more than a
   // lobe of roughness 0.3 spreads them (20% + 2 x 0.3 = 80%), every one refused.

@@ -29,7 +29,7 @@ struct BatchOptions {
   int neighbours = 1;                           // K frames each side of frame f as its views
   bool neighboursGiven = false;                 // else the default: see defaultNeighbours
   int neighbourReach = 12;                      // ... the farthest this many frames away
-  int temporal = 3;                             // passes of frames f-K..f+K blended into frame f's
+  int temporal = 5;                             // passes of frames f-K..f+K blended into frame f's
   SettingsOptions settings;
   OutputOptions out;
   // Readers and as many writers; a quarter of the cores leaves the rest to a CPU device.
@@ -197,9 +197,10 @@ Action addBatchCommand(CLI::App& app) {
                   "adjacent frames)")
       ->capture_default_str();
   cmd->add_option("--temporal", o->temporal,
-                  "K: each frame's pass is blended with those of frames f-K..f+K, each traced with its own seed and "
-                  "read where it shows the same reflection (reprojected at the reflected point; refused where "
-                  "depth, normals, hit distance or radiance disagree); 0: each frame alone")
+                  "K: each frame's pass is blended with those of frames f-K..f+K (each weighing less the farther "
+                  "it is, down to 1/(K+1)), each traced with its own seed and read where it shows the same "
+                  "reflection (reprojected at the reflected point; refused where depth, normals, hit distance or "
+                  "radiance disagree); 0: each frame alone")
       ->capture_default_str()
       ->check(CLI::Range(0, 64));
   cmd->add_option("--shard", o->shard,

@@ -236,6 +236,10 @@ Image temporalBlend(const std::vector<TemporalFrame>& frames, size_t centre, con
     geometry.emplace_back(f, *statistics.back());
   }
   const FrameGeometry& g = geometry[centre];
+  // Frame j weighs 1 - d / (R + 1), d = |j - centre|, R the window's longer side: a frame that
+  // enters or leaves the window then moves the pass by a smaller step than with equal weights
+  // (the frame-to-frame change the shots' metric measures), for little more noise a frame.
+  const double reach = double(std::max(centre, frames.size() - 1 - centre)) + 1.0;
   const double cosNormal = std::cos(glm::radians(double(s.maxNormalDegrees)));
 
   Image out = *own.reflection;
@@ -284,6 +288,7 @@ Image temporalBlend(const std::vector<TemporalFrame>& frames, size_t centre, con
         for (size_t j = 0; j < frames.size(); ++j) {
           if (j == centre) continue;
           const FrameGeometry& o = geometry[j];
+          const double frameWeight = 1.0 - std::abs(double(j) - double(centre)) / reach;
           const glm::dvec3& q = projected[j].reflected;
           if (!(q.z > 0.0) || !std::isfinite(q.x) || !std::isfinite(q.y)) continue;
           if (hitShown) {  // the hit seen from the neighbour in front of what it shows there: moved
@@ -306,11 +311,11 @@ Image temporalBlend(const std::vector<TemporalFrame>& frames, size_t centre, con
             const double ds = frames[j].distance->at(sx, sy, 0);
             if (!(ds > 0.0)) continue;
             const double expected = glm::length(reflected - ps);
-            const double e = std::abs(ds - expected) / ((s.distanceTolerance + spread) * expected);
-            if (e >= 1.0) continue;
-            const double match = (1.0 - e) * (1.0 - e);
+            // Within the tolerance a tap weighs in full: weights that fell with the mismatch kept
+            // more of the frame's own noise (docs/BENCHMARKS.md "Window weights").
+            if (!(std::abs(ds - expected) < (s.distanceTolerance + spread) * expected)) continue;
             if (!statistics[centre]->radiance.agrees(x, y, statistics[j]->radiance, sx, sy, s)) continue;
-            const double wk = bilinear * match;
+            const double wk = bilinear * frameWeight;
             for (int c = 0; c < 4; ++c) sum[c] += wk * frames[j].reflection->at(sx, sy, c);
             weight += wk;
           }

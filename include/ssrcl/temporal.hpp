@@ -11,10 +11,11 @@
 // maxNormalDegrees, and its own hit distance matches the distance from it to the reflected point;
 // and refused when the frame's hit, seen from the neighbour, is in front of what the neighbour
 // shows there (the object has moved), where the frame itself shows the hit (a hit on no surface,
-// or off the screen, stands in front of what the frame shows as well). Weights fall with the
-// hit-distance mismatch. Both tests widen with roughness: a rough lobe's hit distance is a mean
-// over hits spread across the lobe, which moves with the view, and its hit (taken along the
-// lobe's centre) need not lie on a surface.
+// or off the screen, stands in front of what the frame shows as well). A tap taken weighs its
+// bilinear share times its frame's weight: the frames lie in shot order one apart, and frame j
+// weighs 1 - |j - centre| / (R + 1), R the window's longer side (the frame itself 1). Both tests
+// widen with roughness: a rough lobe's hit distance is a mean over hits spread across the lobe,
+// which moves with the view, and its hit (taken along the lobe's centre) need not lie on a surface.
 // Geometry cannot see a light that changes over the window: a tap is also refused where the
 // neighbour's radiance around it (the mean of a 5x5 neighbourhood) differs from the frame's own
 // around the pixel by more than noise and a ratio allow. The noise is the smaller of the two

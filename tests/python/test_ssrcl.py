@@ -302,8 +302,9 @@ class ViewTest(unittest.TestCase):
 class TemporalBlendTest(unittest.TestCase):
     def test_two_takes_of_one_frame_average(self):
         """The same frame twice, its pass with different noise: every neighbour pixel reprojects
-        onto itself and is accepted, so the blend is the mean of the two takes where the rays hit;
-        a miss (distance 0) keeps its own take."""
+        onto itself and is accepted, so where the rays hit the blend is the takes' mean weighted
+        1 : 1/2 (a frame one away in a window whose longer side is 1 weighs 1 - 1/2); a miss
+        (distance 0) keeps its own take."""
         scene = PlaneMirror()
         rng = np.random.default_rng(7)
         takes = [rng.uniform(0.0, 1.0, (scene.H, scene.W, 4)).astype(np.float32) for _ in range(2)]
@@ -313,7 +314,7 @@ class TemporalBlendTest(unittest.TestCase):
         blended = ssrcl.temporalBlend(frames, 0)
         hit = (distance > 0.0)[..., None]
         self.assertTrue(hit.any() and not hit.all())
-        np.testing.assert_allclose(blended, np.where(hit, (takes[0] + takes[1]) / 2, takes[0]), atol=1e-6)
+        np.testing.assert_allclose(blended, np.where(hit, (takes[0] + 0.5 * takes[1]) / 1.5, takes[0]), atol=1e-6)
         for f in frames:  # mirror pixels keep their own pass
             f["roughness"] = np.zeros((scene.H, scene.W))
         np.testing.assert_array_equal(ssrcl.temporalBlend(frames, 1), takes[1])
