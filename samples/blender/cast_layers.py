@@ -13,7 +13,6 @@ on every corpus scene they agree within 1% and 2% on every pixel).
 """
 import os
 import sys
-import tempfile
 import time
 
 import bpy
@@ -22,8 +21,7 @@ from mathutils import Vector
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
-import render_back_faces  # noqa: E402  (its path setup and build_scene)
-from script_args import outdir_and_names, script_args  # noqa: E402
+import render_back_faces  # noqa: E402  (its path setup, build_scene and the command line)
 
 def layers(scene, outdir, name):
     """Casts every pixel's viewing line and writes the two layers' files."""
@@ -84,18 +82,11 @@ def layers(scene, outdir, name):
     print("LAYERS %s %dx%d: %.1f s, second layer on %d pixels, first back on %d" % (
         name, W, H, time.perf_counter() - t0, int((out2[..., 1] > 0).sum()), int((out1[..., 1] > 0).sum())))
 
+
 def main():
-    args = script_args()
-    usage = "usage: blender -b --factory-startup --python cast_layers.py -- corpus|real <outdir> [scene names...]"
-    if len(args) < 2 or args[0] not in ("corpus", "real"):
-        print(usage, file=sys.stderr)
-        sys.exit(2)
-    corpus = args[0]
-    module = __import__("make_real_corpus" if corpus == "real" else "make_corpus")
-    outdir, names = outdir_and_names(args[1:], module.SCENE_BY_NAME, usage)
-    with tempfile.TemporaryDirectory() as scratch:  # what a real scene's build writes (its HDRI)
-        for name in names:
-            layers(render_back_faces.build_scene(corpus, module.SCENE_BY_NAME[name], scratch), outdir, name)
+    render_back_faces.for_each_corpus_scene(
+        "cast_layers.py", lambda corpus, spec, outdir, scratch: layers(
+            render_back_faces.build_scene(corpus, spec, scratch), outdir, spec["name"]))
 
 
 if __name__ == "__main__":

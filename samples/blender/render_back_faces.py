@@ -58,10 +58,13 @@ def render_back(corpus, spec, outdir, scratch):
     print("BACK %s: %.1f s, %d bytes" % (spec["name"], time.perf_counter() - start, os.path.getsize(path)))
 
 
-def main():
+def for_each_corpus_scene(script_name, action):
+    """Runs action(corpus, spec, outdir, scratch) on the scenes the command line names (`corpus|real
+    <outdir> [scene names...]`, every scene of that corpus without names); exits 2 with the usage
+    on a bad command line."""
     args = script_args()
-    usage = ("usage: blender -b --factory-startup --python render_back_faces.py -- corpus|real <outdir> "
-             "[scene names...]")
+    usage = ("usage: blender -b --factory-startup --python %s -- corpus|real <outdir> "
+             "[scene names...]" % script_name)
     if len(args) < 2 or args[0] not in ("corpus", "real"):
         print(usage, file=sys.stderr)
         sys.exit(2)
@@ -70,7 +73,11 @@ def main():
     outdir, names = outdir_and_names(args[1:], module.SCENE_BY_NAME, usage)
     with tempfile.TemporaryDirectory() as scratch:  # what a real scene's build writes (its HDRI)
         for name in names:
-            render_back(corpus, module.SCENE_BY_NAME[name], outdir, scratch)
+            action(corpus, module.SCENE_BY_NAME[name], outdir, scratch)
+
+
+def main():
+    for_each_corpus_scene("render_back_faces.py", render_back)
 
 
 if __name__ == "__main__":
