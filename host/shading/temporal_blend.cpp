@@ -240,6 +240,8 @@ Image temporalBlend(const std::vector<TemporalFrame>& frames, size_t centre, con
   // enters or leaves the window then moves the pass by a smaller step than with equal weights
   // (the frame-to-frame change the shots' metric measures), for little more noise a frame.
   const double reach = double(std::max(centre, frames.size() - 1 - centre)) + 1.0;
+  std::vector<double> frameWeight(frames.size());
+  for (size_t j = 0; j < frames.size(); ++j) frameWeight[j] = 1.0 - std::abs(double(j) - double(centre)) / reach;
   const double cosNormal = std::cos(glm::radians(double(s.maxNormalDegrees)));
 
   Image out = *own.reflection;
@@ -288,7 +290,6 @@ Image temporalBlend(const std::vector<TemporalFrame>& frames, size_t centre, con
         for (size_t j = 0; j < frames.size(); ++j) {
           if (j == centre) continue;
           const FrameGeometry& o = geometry[j];
-          const double frameWeight = 1.0 - std::abs(double(j) - double(centre)) / reach;
           const glm::dvec3& q = projected[j].reflected;
           if (!(q.z > 0.0) || !std::isfinite(q.x) || !std::isfinite(q.y)) continue;
           if (hitShown) {  // the hit seen from the neighbour in front of what it shows there: moved
@@ -315,7 +316,7 @@ Image temporalBlend(const std::vector<TemporalFrame>& frames, size_t centre, con
             // more of the frame's own noise (docs/BENCHMARKS.md "Window weights").
             if (!(std::abs(ds - expected) < (s.distanceTolerance + spread) * expected)) continue;
             if (!statistics[centre]->radiance.agrees(x, y, statistics[j]->radiance, sx, sy, s)) continue;
-            const double wk = bilinear * frameWeight;
+            const double wk = bilinear * frameWeight[j];
             for (int c = 0; c < 4; ++c) sum[c] += wk * frames[j].reflection->at(sx, sy, c);
             weight += wk;
           }

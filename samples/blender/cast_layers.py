@@ -23,15 +23,15 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 import render_back_faces  # noqa: E402  (its path setup, build_scene and the command line)
 
+
 def layers(scene, outdir, name):
     """Casts every pixel's viewing line and writes the two layers' files."""
     dg = bpy.context.evaluated_depsgraph_get()
     cam = scene.camera
     W = scene.render.resolution_x * scene.render.resolution_percentage // 100
     H = scene.render.resolution_y * scene.render.resolution_percentage // 100
-    frame = [cam.matrix_world @ v for v in cam.data.view_frame(scene=scene)]
     # view_frame: top-right, bottom-right, bottom-left, top-left
-    tr, br, bl, tl = frame
+    tr, br, bl, tl = [cam.matrix_world @ v for v in cam.data.view_frame(scene=scene)]
     eye = cam.matrix_world.translation
     fwd = (cam.matrix_world.to_3x3() @ Vector((0, 0, -1))).normalized()
     out1 = np.zeros((H, W, 2), np.float32)
@@ -47,12 +47,11 @@ def layers(scene, outdir, name):
             d = (p - eye).normalized()
             cosz = d.dot(fwd)
             origin = eye.copy()
-            travelled = 0.0
             depth = 0
             state = 0  # 0 before the first solid, 1 inside it, 2 between, 3 inside the second
             f0 = b0 = f1 = b1 = 0.0
-            for k in range(16):
-                hit, loc, nrm, idx, obj, mat = scene.ray_cast(dg, origin, d)
+            for _ in range(16):
+                hit, loc, nrm = scene.ray_cast(dg, origin, d)[:3]
                 if not hit:
                     break
                 dist = (loc - eye).dot(d)
