@@ -18,9 +18,8 @@
 #define SSRCL_BACK_KNOWN 0
 #endif
 // The Hi-Z trace skips cells the ray crosses wholly behind every hit a pixel there allows (the
-// back pyramid, back_pyramid.cl). Not with views: a ray's passage behind surfaces is recorded there
-// pixel by pixel (SSRCL_RAY_BEHIND).
-#define SSRCL_BACK_SKIP (!SSRCL_VIEWS)
+// range pyramid, back_pyramid.cl); with views such a skip records the ray's passage behind them
+// (SSRCL_RAY_BEHIND), in the frame and in the views alike.
 #ifndef SSRCL_TRACE_PACKETS
 #define SSRCL_TRACE_PACKETS 3  // packets of eight rays a round (trace_hiz_packets)
 #endif
@@ -85,7 +84,6 @@ inline bool make_screen_ray(float16 proj, int2 size, float3 p0, float3 p1, Scree
 
 typedef struct {
   int2 size;
-  __global const float* hzb;
   __global const HzbLevel* levels;
   int level_count;
   __global const float4* planes;   // per pixel, scaled by its thickness (surface_plane.cl)
@@ -97,7 +95,7 @@ typedef struct {
   // hit (a ray that starts hidden, as from a surface a view sees from behind, is not held to it
   // until it comes into view); its hit was found within a surface's thickness.
   int seen, behind, thick;
-  __global const float2* range;  // the range pyramid (SSRCL_BACK_SKIP, back_pyramid.cl): y = farthest hit
+  __global const float2* range;  // the range pyramid (Hi-Z, back_pyramid.cl): y = farthest hit
   __global const float* guess;   // SSRCL_BACK_KNOWN: the model's thickness in exact ones (0: back unknown)
   // SSRCL_BACK_KNOWN: the first surface the ray passed behind within its guess (past), where.
   int past;
@@ -179,13 +177,22 @@ inline float hit_pixel(TraceScene* sc, const ScreenRay* ray, float3 dir, int2 ce
 // The depths at which a ray over cell `cell` of level `level` may hit: from the nearest surface
 // there (x) to the farthest a hit allows (y, the back pyramid; unbounded without it).
 inline float2 cell_range(const TraceScene* sc, int level, int2 cell) {
-  int i = pyramid_index(sc->levels, level, cell);
-#if SSRCL_BACK_SKIP
-  return sc->range[i];
-#else
-  return (float2)(sc->hzb[i], INFINITY);
-#endif
+  return sc->range[pyramid_index(sc->levels, level, cell)];
 }
+
+#if SSRCL_VIEWS
+// What hit_pixel records of a cell the ray does not meet, for the views: wholly beyond every hit
+// its pixels allow, the ray passed behind their surfaces (hidden there); wholly in front of a
+// pixel's surface, it was seen.
+inline void passed_cell(TraceScene* sc, int level, bool beyond, bool before) {
+  if (beyond) {
+    sc->hidden = 1;
+    if (sc->seen) sc->behind = 1;
+  } else if (before && level == 0) {
+    sc->seen = 1;
+  }
+}
+#endif
 
 // A cell's side as a float: 2^level from the exponent bits.
 inline float cell_size(int level) { return as_float((level + 127) << 23); }
@@ -222,8 +229,11 @@ inline float trace_hiz(TraceScene* sc, const ScreenRay* ray, float3 dir, int2* h
     ++sc->fetches;
     const float2 range = cell_range(sc, level, c);
     const bool meets = fmax(d_t, d_end) >= range.x && fmin(d_t, d_end) <= range.y;
+#if SSRCL_VIEWS
+    passed_cell(sc, level, fmin(d_t, d_end) > range.y, fmax(d_t, d_end) < range.x);
+#endif
     bool stay = false;
-    if (level == 0 && (meets || SSRCL_VIEWS)) {
+    if (level == 0 && meets) {
       bool in_front;
       float t_hit = hit_pixel(sc, ray, dir, c, t, t_end, &in_front);
       if (t_hit >= 0.0f) {
@@ -400,20 +410,24 @@ inline bool packet_step(Packet8* p, const TraceScene* sc) {
   const int record = sizeof(HzbLevel) / sizeof(int);
   const int8 texel = as_int8(gather8((__global const float*)sc->levels, p->level * record)) +
                      clamp(p->cy, 0, height - 1) * width + clamp(p->cx, 0, width - 1);
-#if SSRCL_BACK_SKIP
   float8 hi;
   const float8 lo = gather8_xy(sc->range, texel, &hi);
-#else
-  const float8 lo = gather8(sc->hzb, texel), hi = INFINITY;
-#endif
   if (SSRCL_COUNT_WORK) p->fetches -= p->active;  // counted only where they are read
   const int8 meets = p->active & (fmax(p->d_t, d_end) >= lo) & (fmin(p->d_t, d_end) <= hi);
   const int8 fine = p->level == 0;
+#if SSRCL_VIEWS
+  {  // passed_cell per lane
+    const int8 beyond = p->active & (fmin(p->d_t, d_end) > hi);
+    p->hidden |= beyond;
+    p->behind |= beyond & p->seen;
+    p->seen |= p->active & fine & ~beyond & (fmax(p->d_t, d_end) < lo);
+  }
+#endif
   int8 hit = 0, stay = 0;
   // On whether any lane is fine, known before the range texel arrives: a branch on the texel
   // would wait for it (5% of the trace).
   if (any_lane(fine & p->active)) {
-    const int8 test = fine & (SSRCL_VIEWS ? p->active : meets);
+    const int8 test = fine & meets;
     int8 in_front, past_now, entered_now = 0;
     float8 g_past, guess;
     // The views' records, kept in the packet only where views read them (else left for dead here).
@@ -767,8 +781,7 @@ typedef struct {
 //   ray_hit      hit: (view-space hit point, confidence >= 0); miss: (direction, -1)
 //   ray_radiance (rgb at the hit, pdf of the direction); pdf 0 marks a ray that is a delta
 //                (mirror) or was not traced, which neighbours must not reuse.
-__kernel void trace_rays(TraceParams params, __global const float* hzb, __global const float2* range,
-                         __global const HzbLevel* levels,
+__kernel void trace_rays(TraceParams params, __global const float2* range, __global const HzbLevel* levels,
                          __global const float4* positions, __global const float4* normals,
                          __global const int* ray_list, __global const int* pixel_rays,
                          __global const float4* planes, __global const float* guess, __global int* work_counters,
@@ -784,8 +797,8 @@ __kernel void trace_rays(TraceParams params, __global const float* hzb, __global
   // The rays of SSRCL_TRACE_PIXELS listed pixels per work-item, in rounds of up to SSRCL_TRACE_ROUND:
   // made one by one (skipping the slots a pixel has no ray in, so lanes stay full where pixels have
   // one ray, as mirror pixels do), traced together in lanes (Hi-Z), then shaded one by one.
-  const TraceScene frame_scene = {size,  hzb,  levels, level_count, planes, normals, params.max_iterations, 0, 0, 0,
-                                   0,     0,    range,  guess,       0,      -1.0f,   (int2)(0)};
+  const TraceScene frame_scene = {size, levels, level_count, planes, normals, params.max_iterations, 0, 0, 0, 0, 0,
+                                   range, guess, 0, -1.0f, (int2)(0)};
   int next;
   const int end = work_item_rays(params.listed, batch_size, &next);
   while (next < end) {

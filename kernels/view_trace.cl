@@ -2,7 +2,7 @@
 // edge, a hit found after passing behind a surface the frame shows, which may hide what the ray
 // really meets, or a hit found within a surface's thickness, which may stand in front of it) continues in other G-buffers of the same scene. A ray is a straight line in
 // every perspective view, so it is clipped to the view's frustum, projected into the view's
-// screen and traced there by the same tracer (trace.cl) against the view's own depth, HZB and
+// screen and traced there by the same tracer (trace.cl) against the view's own range pyramid and
 // surface planes (back faces included). The hit's colour is the view's.
 //
 // One pass per (rank, view): a ray takes part in the pass of view k at rank r when k is its r-th
@@ -97,7 +97,7 @@ typedef struct {
 __kernel void trace_views(ViewTraceParams params, __global const ViewCamera* views,
                           __global const float4* main_positions, __global const float4* main_normals,
                           __global const int* ray_list, __global const int* pixel_rays,
-                          __global const float* hzb, __global const HzbLevel* levels,
+                          __global const float2* range, __global const HzbLevel* levels,
                           __global const float4* positions, __global const float4* normals,
                           __global const float4* planes, __global const float4* color_pyramid,
                           __global float4* ray_hit, __global float4* ray_radiance, __global uchar* ray_state,
@@ -109,8 +109,8 @@ __kernel void trace_views(ViewTraceParams params, __global const ViewCamera* vie
   const int2 size = (int2)(cam.width, cam.height);
   // The rays of SSRCL_TRACE_PIXELS listed pixels per work-item, in rounds of the ones that go on
   // in this view, traced together (trace.cl trace_round) and then taken or left one by one.
-  const TraceScene view_scene = {size, hzb, levels, params.level_count, planes, normals, params.max_iterations, 0, 0,
-                                  0,    0,   0};
+  const TraceScene view_scene = {size, levels, params.level_count, planes, normals, params.max_iterations, 0, 0, 0, 0, 0,
+                                  range};
   int next;
   const int end = work_item_rays(params.listed, batch_size, &next);
   while (next < end) {

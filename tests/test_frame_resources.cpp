@@ -87,7 +87,8 @@ TEST(FrameResources, EveryRoleReadIsWrittenBySomeStage) {
       &SetupStage::access,        &ThicknessStage::access, &HzbStage::access,     &BackPyramidStage::access,
       &ColorPyramidStage::access, &TraceStage::access,     &ResolveStage::access, &FilterStage::access,
       &EnvironmentStage::access,  &ViewStage::access};
-  const std::vector<const StageAccess*> view = {&SetupStage::access, &ThicknessStage::access, &HzbStage::access,
+  const std::vector<const StageAccess*> view = {&SetupStage::access,        &ThicknessStage::access,
+                                                &HzbStage::access,          &BackPyramidStage::access,
                                                 &ColorPyramidStage::access, &ViewStage::viewAccess};
   for (const auto* frame : {&main, &view}) {
     std::set<Role> written;

@@ -11,7 +11,7 @@ class BackPyramidStage {
  public:
   static const StageAccess access;
 
-  // `used`: only the Hi-Z trace without views reads the pyramid (kernels/trace.cl SSRCL_BACK_SKIP);
+  // `used`: only the Hi-Z trace reads the pyramid (kernels/trace.cl cell_range, in the frame and views);
   // for the others it is not built. `guessed`: with a back-face pass, whose misses fall back on the
   // thickness model's guess (BackGuess), a surface reaches as far as the larger of the two.
   void configure(Device::Impl& device, bool used, bool guessed);

@@ -122,7 +122,7 @@ void Pipeline::Impl::plan() {
     setup.configure(d);
     thickness.configure(d, settings, back);
     hzb.configure(d);
-    backPyramid.configure(d, settings.tracer == Tracer::HiZ && viewCount == 0, back);
+    backPyramid.configure(d, settings.tracer == Tracer::HiZ, back);
     colors.configure(d, settings);
     trace.configure(d, settings, base, materials, viewCount > 0, back);
     resolve.configure(d, settings, viewCount);

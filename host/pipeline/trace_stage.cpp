@@ -20,7 +20,7 @@ namespace {
 // trace_rays's arguments after its parameters; the material passes are set again each frame.
 const KernelArgList kTraceArgs{
     1,
-    "hzb, range, levels, positions, normals, ray_list, pixel_rays, planes, guess, work_counters, color_pyramid, "
+    "range, levels, positions, normals, ray_list, pixel_rays, planes, guess, work_counters, color_pyramid, "
     "base, specular, f0, albedo, ray_hit, ray_radiance, ray_state"};
 
 // Ray records of all samples when they fit in this budget, else fewer samples per batch (the
@@ -47,7 +47,7 @@ const std::vector<cl_float2>& albedoTable() {
 }  // namespace
 
 const StageAccess TraceStage::access{"trace",
-                                     {Role::DepthPyramid, Role::BackPyramid, Role::PyramidLevels, Role::Positions, Role::Normals,
+                                     {Role::BackPyramid, Role::PyramidLevels, Role::Positions, Role::Normals,
                                       Role::RayList, Role::PixelRays, Role::Planes, Role::BackGuess,
                                       Role::ColorPyramid},
                                      {Role::RayHits, Role::RayRadiance, Role::RayStates}};
@@ -89,7 +89,7 @@ void TraceStage::plan(FrameResources& resources, DeviceBuffers& buffers, const F
 void TraceStage::bind(const FrameResources& resources) {
   auto in = [&](Role role) { return resources.read(access, role); };
   auto out = [&](Role role) { return resources.write(access, role); };
-  bindArgs(kernel_, kTraceArgs, in(Role::DepthPyramid), in(Role::BackPyramid), in(Role::PyramidLevels), in(Role::Positions), in(Role::Normals), in(Role::RayList),
+  bindArgs(kernel_, kTraceArgs, in(Role::BackPyramid), in(Role::PyramidLevels), in(Role::Positions), in(Role::Normals), in(Role::RayList),
            in(Role::PixelRays), in(Role::Planes), in(Role::BackGuess), workCounters_, in(Role::ColorPyramid), baseIn_.own(),
            specularIn_.own(), f0In_.own(), albedoTable_, out(Role::RayHits), out(Role::RayRadiance), out(Role::RayStates));
 }

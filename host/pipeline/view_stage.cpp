@@ -22,7 +22,7 @@ const StageAccess ViewStage::access{"views",
                                     {Role::Positions, Role::Normals, Role::RayList, Role::PixelRays},
                                     {Role::RayHits, Role::RayRadiance, Role::RayStates}};
 const StageAccess ViewStage::viewAccess{"views (in a view)",
-                                        {Role::DepthPyramid, Role::PyramidLevels, Role::Positions, Role::Normals,
+                                        {Role::BackPyramid, Role::PyramidLevels, Role::Positions, Role::Normals,
                                          Role::Planes, Role::ColorPyramid},
                                         {}};
 
@@ -52,6 +52,7 @@ void ViewStage::configure(Device::Impl& device, const TraceSettings& s, size_t v
     unit->setup.configure(device);
     unit->thickness.configure(device, s, false);  // views have no back-face depth
     unit->hzb.configure(device);
+    unit->range.configure(device, s.tracer == Tracer::HiZ, false);
     unit->colors.configure(device, s, false);
     unit->kernel = cl::Kernel(program_, "trace_views");
   }
@@ -68,6 +69,7 @@ void ViewStage::plan(DeviceBuffers& buffers, const std::vector<ViewSource>& view
     u.setup.plan(u.resources, buffers, u.frame, colorChannels_.back(), views[k].inputs.has("roughness"), false);
     u.thickness.plan(u.resources, buffers, u.frame);
     u.hzb.plan(u.resources, buffers, u.frame);
+    u.range.plan(u.resources, buffers, u.frame);
     u.colors.plan(u.resources, buffers, u.frame);
   }
   buffers.add(cameras_, units_.size() * sizeof(ViewCamera), CL_MEM_READ_ONLY);
@@ -97,13 +99,14 @@ void ViewStage::bind(cl::CommandQueue& q, const Camera& main, const std::vector<
     u.setup.bind(u.resources);
     u.thickness.bind(u.resources);
     u.hzb.bind(q, u.resources);
+    u.range.bind(u.resources);
     u.colors.bind(u.resources);
     auto view = [&](Role role) { return u.resources.read(viewAccess, role); };
     bindArgs(u.kernel, 1,
-             "views, main_positions, main_normals, ray_list, pixel_rays, hzb, levels, positions, normals, planes, "
-             "color_pyramid, ray_hit, ray_radiance, ray_state, ray_view_order",
+             "views, main_positions, main_normals, ray_list, pixel_rays, range, levels, positions, normals, "
+             "planes, color_pyramid, ray_hit, ray_radiance, ray_state, ray_view_order",
              cameras_, in(Role::Positions), in(Role::Normals), in(Role::RayList), in(Role::PixelRays),
-             view(Role::DepthPyramid), view(Role::PyramidLevels), view(Role::Positions), view(Role::Normals),
+             view(Role::BackPyramid), view(Role::PyramidLevels), view(Role::Positions), view(Role::Normals),
              view(Role::Planes), view(Role::ColorPyramid), out(Role::RayHits), out(Role::RayRadiance),
              out(Role::RayStates), viewOrder_);
   }
@@ -126,6 +129,7 @@ void ViewStage::prepare(cl::CommandQueue& q, std::vector<ViewSource>& views, con
     u.hzb.enqueue(q, events);
     u.colors.reduce(q, events);
     u.thickness.enqueue(q, constants, vs, nullptr, false, events);
+    u.range.enqueue(q, constants, events);
     views[k].prepared = true;
   }
 }

@@ -1,9 +1,10 @@
 #pragma once
 // Auxiliary views (kernels/view_trace.cl): other G-buffers of the same scene, each with its own
-// camera. Every view runs the main frame's own setup, thickness, HZB and colour pyramid stages on
+// camera. Every view runs the main frame's own setup, thickness, HZB, back and colour pyramid stages on
 // its images; after each trace batch, the rays the main frame left unresolved continue in them.
 #include <memory>
 
+#include "back_pyramid_stage.hpp"
 #include "color_pyramid_stage.hpp"
 #include "pipeline_inputs.hpp"
 #include "setup_stage.hpp"
@@ -56,6 +57,7 @@ class ViewStage {
     SetupStage setup;
     ThicknessStage thickness;
     HzbStage hzb;
+    BackPyramidStage range;  // what the trace skips (kernels/back_pyramid.cl)
     ColorPyramidStage colors;
     cl::Kernel kernel;  // trace_views bound to this view's buffers
   };
