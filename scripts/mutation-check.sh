@@ -70,6 +70,7 @@ MUTANTS=(
   "second_ray_finds_nothing|0|trace.cl|if (t2 < 0.0f) return (float4)(0.0f, 0.0f, 0.0f, -1.0f);|return (float4)(0.0f, 0.0f, 0.0f, -1.0f);|$GLOSSY_HITS"
   "clear_ignores_hidden|0|trace.cl|(t < 0.0f && !sc->hidden &&|(t < 0.0f && !sc->behind &&|$HIDDEN"
   "back_entry_off|0|trace.cl|if (h_in < 0.0f && h_out >= 0.0f) {|if (false) {|$BACK"
+  "skip_forgets_passage|0|trace.cl|const int8 beyond = p->active & (fmin(p->d_t, d_end) > hi);|const int8 beyond = 0;|$HIDDEN"
   "fill_point_sample|0|environment.cl|#define SSRCL_FILL_FOOTPRINT 0.21f|#define SSRCL_FILL_FOOTPRINT 0.0f|$FOOTPRINT"
 )
 

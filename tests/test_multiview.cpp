@@ -229,11 +229,13 @@ TEST(Multiview, HiddenReflectionsComeFromAViewThatSeesThem) {
             << ", without " << without.fraction(without.exact) << " (found " << without.fraction(without.found)
             << ")\n";
   ASSERT_GT(with.pixels, 300u);
-  // Measured 0.777 with the view (591 pixels), 0.027 without. A view replaces a frame's doubtful
-  // hit only when it sees the ray's whole way (kernels/view_trace.cl); the rest pass behind another
-  // surface in the view too. Taking every view hit gives 0.948 here but -1.9 dB on the corpus's
-  // bump_floor (contact points hidden from every view took emitters seen past them).
-  EXPECT_GE(with.fraction(with.exact), 0.76);
+  // Measured 0.810 with the view (591 pixels), 0.027 without; 0.777 while the views stepped behind
+  // surfaces pixel by pixel, 0.761 where the range pyramid's skip forgets that the ray passed
+  // behind them (passed_cell, kernels/trace.cl). A view replaces a frame's doubtful hit only when
+  // it sees the ray's whole way (kernels/view_trace.cl); the rest pass behind another surface in
+  // the view too. Taking every view hit gives 0.948 here but -1.9 dB on the corpus's bump_floor
+  // (contact points hidden from every view took emitters seen past them).
+  EXPECT_GE(with.fraction(with.exact), 0.79);
   EXPECT_LE(without.fraction(without.exact), 0.05);
 }
 
@@ -251,7 +253,7 @@ TEST(Multiview, HiddenReflectionsComeFromANeighbouringFrameToo) {
   std::cout << "hidden hits the reverse neighbour sees: " << with.pixels << "; exact with it "
             << with.fraction(with.exact) << "\n";
   ASSERT_GT(with.pixels, 300u);
-  EXPECT_GE(with.fraction(with.exact), 0.76);  // measured 0.777, as from a view of the same moment
+  EXPECT_GE(with.fraction(with.exact), 0.79);  // measured 0.810, as from a view of the same moment
 }
 
 // Views that add nothing leave the pass as it was, and removing them restores it bit for bit.
