@@ -175,7 +175,7 @@ inline float hit_pixel(TraceScene* sc, const ScreenRay* ray, float3 dir, int2 ce
 }
 
 // The depths at which a ray over cell `cell` of level `level` may hit: from the nearest surface
-// there (x) to the farthest a hit allows (y, the back pyramid; unbounded without it).
+// there (x) to the farthest a hit allows (y): the range pyramid's texel.
 inline float2 cell_range(const TraceScene* sc, int level, int2 cell) {
   return sc->range[pyramid_index(sc->levels, level, cell)];
 }

@@ -1,7 +1,8 @@
 #pragma once
 // Auxiliary views (kernels/view_trace.cl): other G-buffers of the same scene, each with its own
-// camera. Every view runs the main frame's own setup, thickness, HZB, back and colour pyramid stages on
-// its images; after each trace batch, the rays the main frame left unresolved continue in them.
+// camera. Every view runs the main frame's own setup, thickness, HZB, range and colour pyramid
+// stages on its images; after each trace batch, the rays the main frame left unresolved continue
+// in them.
 #include <memory>
 
 #include "back_pyramid_stage.hpp"
