@@ -56,6 +56,7 @@ void bindSettings(py::module_& m) {
       .def_readwrite("maxIterations", &TraceSettings::maxIterations)
       .def_readwrite("maxRoughness", &TraceSettings::maxRoughness)
       .def_readwrite("edgeFade", &TraceSettings::edgeFade)
+      .def_readwrite("viewRadianceCap", &TraceSettings::viewRadianceCap)
       .def_readwrite("constantRoughness", &TraceSettings::constantRoughness)
       .def_readwrite("glossyHitRoughness", &TraceSettings::glossyHitRoughness)
       .def_readwrite("samplesPerPixel", &TraceSettings::samplesPerPixel)

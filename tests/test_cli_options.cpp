@@ -117,6 +117,8 @@ const std::vector<SettingsOption>& settingsOptions() {
       {"--thickness-model constant", {{"thicknessModel", "constant"}}, true},
       {"--thickness 0.05", {{"thicknessModel", "constant"}, {"thicknessRelative", 0.05}}, true},
       {"--edge-fade 0.3", {{"edgeFade", 0.3}}, true},
+      // Record only: this frame has no views; the cap's effect is test_shot_temporal's.
+      {"--view-radiance-cap 5", {{"viewRadianceCap", 5.0}}, false},
       {"--environment {env}", json::object(), true},
       {"--environment {env} --environment-rotation 90", {{"environmentRotation", 90.0}}, true, "--environment {env}"},
       {"--environment {env} --environment-intensity 2", {{"environmentIntensity", 2.0}}, true,

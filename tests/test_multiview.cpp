@@ -62,13 +62,14 @@ struct Pass {
 };
 
 Pass trace(const AnalyticGBuffer& g, const ssrcl::Camera& camera, const std::vector<const View*>& views,
-           ssrcl::ViewTime time = ssrcl::ViewTime::Same) {
+           ssrcl::ViewTime time = ssrcl::ViewTime::Same, float viewRadianceCap = ssrcl::TraceSettings{}.viewRadianceCap) {
   ssrcl::Device device = testDevice();
   ssrcl::Pipeline p(device);
   p.setGBuffer(g);
   p.setCamera(camera);
   for (size_t k = 0; k < views.size(); ++k) p.setView(int(k), views[k]->g, views[k]->camera, {}, time);
   p.settings().edgeFade = 0;  // the truth has no fade
+  p.settings().viewRadianceCap = viewRadianceCap;
   p.commit();
   p.execute();
   return {p.output("reflection"), p.output("view")};
@@ -148,6 +149,30 @@ TEST(Multiview, OffScreenReflectionsComeFromAWideView) {
   // A = 0 where the frame cannot see the hit: measured 2 of 1,586 pixels with A > 0, at silhouettes
   // where the frame's neighbouring surface is taken.
   EXPECT_LE(without.fraction(without.found), 0.005);
+}
+
+// View hits keep at most TraceSettings::viewRadianceCap times the frame's 99th percentile of
+// brightness: the spheres' tops the wide view shows are no brighter than the frame's own surfaces,
+// so the default cap (2) and none (0) leave them exact; a cap of 0.05 dims every one.
+TEST(Multiview, TheViewCapDimsOnlyWhatIsBrighterThanItAllows) {
+  const Scene scene = makeScene("spheres_on_mirror");
+  ViewParams frameParams = scene.view, wideParams = scene.view;
+  frameParams.fovYDegrees = 30.0;
+  wideParams.fovYDegrees = 75.0;
+  const ssrcl::Camera camera = makeCamera(frameParams, 240, 135);
+  const AnalyticGBuffer g = renderGBuffer(scene, camera);
+  const MirrorTruth truth = exactMirrorReflection(scene, camera, g);
+  const View wide = renderView(scene, wideParams, 480, 270);
+  const auto exact = [&](float cap) {
+    const Score s = score(g, truth, ReflectionClass::OffScreen, wide, trace(g, camera, {&wide}, ssrcl::ViewTime::Same, cap));
+    EXPECT_GT(s.pixels, 200u);
+    return s.fraction(s.exact);
+  };
+  const double capped = exact(2.0f), none = exact(0.0f), dimmed = exact(0.05f);
+  std::cout << "off-screen hits exact: cap 2 " << capped << ", none " << none << ", 0.05 " << dimmed << "\n";
+  EXPECT_GE(capped, 0.9);
+  EXPECT_EQ(none, capped);
+  EXPECT_LE(dimmed, 0.05);
 }
 
 // The views' rays in packets (kernels/view_trace.cl, trace.cl trace_round) find what trace_hiz

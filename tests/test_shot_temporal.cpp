@@ -3,10 +3,15 @@
 // --temporal` against each frame alone, per frame and over time (tests/support/shot_metric.hpp)
 // against the Cycles references; and its determinism: shards and a resumed run equal the whole
 // run bit for bit. Bounds sit under the figures measured on PoCL (in comments).
+#include <OpenEXR/ImfInputFile.h>
+#include <OpenEXR/ImfStringAttribute.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <iostream>
+#include <nlohmann/json.hpp>
+#include <utility>
 
 #include "support/exr_fixtures.hpp"
 #include "support/run_command.hpp"
@@ -78,6 +83,25 @@ TEST(ShotTemporal, BlendHoldsStillAndBeatsEachFrameAlone) {
   // its history and gains +0.60 dB (27.40): this bound fails there.
   EXPECT_GT(b.tpsnr, a.tpsnr + 0.69);
   EXPECT_GT(b.psnr, a.psnr - 0.1);  // measured +0.02 dB (17.70)
+}
+
+// A blend of 2K + 1 frames averages a rare bright view hit's speckle down by their square root,
+// not the cap's loss of light, so batch raises the views' cap to 2 sqrt(2K + 1)
+// (TraceSettings::viewRadianceCap; its effect: test_multiview), unless it is given.
+TEST(ShotTemporal, TheBlendRaisesTheViewCap) {
+  ssrcl::test::TempDir dir("ssrcl-shot-cap");
+  const auto cap = [&](const char* name, const std::string& options) {
+    const auto r = runCommand(batch(dir.file(name), options + " --frames 1"));
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    Imf::InputFile file((dir.file(name) + "/" + stem(1) + ".refl.exr").c_str());
+    return nlohmann::json::parse(file.header().typedAttribute<Imf::StringAttribute>("ssrcl/settings").value())
+        .at("viewRadianceCap")
+        .get<double>();
+  };
+  EXPECT_NEAR(cap("five", ""), 2.0 * std::sqrt(11.0), 1e-3);  // --temporal 5 by default
+  EXPECT_NEAR(cap("two", "--temporal 2"), 2.0 * std::sqrt(5.0), 1e-3);
+  EXPECT_NEAR(cap("alone", "--temporal 0"), 2.0, 1e-6);
+  EXPECT_NEAR(cap("given", "--view-radiance-cap 3"), 3.0, 1e-6);
 }
 
 TEST(ShotTemporal, ShardsAndResumeEqualTheWholeRun) {

@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -69,6 +70,10 @@ int defaultNeighbours(const BatchOptions& o, size_t frames) {
 }
 
 int runBatch(BatchOptions& o) {
+  // The blend averages 2K + 1 frames: a rare bright view hit's speckle shrinks by their square
+  // root, the cap's loss of light does not (TraceSettings::viewRadianceCap).
+  if (o.temporal != 0 && !o.settings.viewRadianceCap)
+    o.settings.viewRadianceCap = TraceSettings{}.viewRadianceCap * std::sqrt(2.0f * float(o.temporal) + 1.0f);
   const Shard shard = parseShard(o.shard);
   std::vector<FrameJob> jobs;
   const std::vector<FrameJob> all = planBatch(o.request);

@@ -14,6 +14,7 @@ TraceSettings SettingsOptions::resolve() const {
     s.thicknessModel = ThicknessModel::Constant;
   }
   apply(s.edgeFade, edgeFade);
+  apply(s.viewRadianceCap, viewRadianceCap);
   apply(s.mirrorRoughness, mirrorRoughness);
   apply(s.linearStepPixels, linearStep);
   apply(s.samplesPerPixel, spp);
@@ -99,6 +100,11 @@ void addSettingsOptions(CLI::App& cmd, SettingsOptions& o) {
       ->excludes(model);
   cmd.add_option("--edge-fade", o.edgeFade,
                  "Fraction of the screen over which A fades at its edges (default 0: no fade)")
+      ->group(m);
+  cmd.add_option("--view-radiance-cap", o.viewRadianceCap,
+                 "Hits found in views or neighbouring frames keep at most this many times the frame's 99th "
+                 "percentile of brightness (0: no cap; default 2, and 2 sqrt(2K + 1) in a batch that blends K frames on "
+                 "each side)")
       ->group(m);
 
   const char* e = "Environment";

@@ -241,7 +241,7 @@ void Pipeline::Impl::run() {
   backPyramid.enqueue(q, constants, events);
   stage = "views";
   viewStage.prepare(q, views, s, events);
-  if (!views.empty()) viewStage.limitRadiance(inputs.pixels("color"), frame.pixels(), colorChannels);
+  if (!views.empty()) viewStage.limitRadiance(inputs.pixels("color"), frame.pixels(), colorChannels, s.viewRadianceCap);
   stage = "setup";
   const SetupStage::Counts counts = setup.readCounts(q);
   const int tiles = counts.listedTiles, batch = trace.batchSize();

@@ -32,6 +32,7 @@ std::string settingsJson(const TraceSettings& s) {
   j["maxIterations"] = s.maxIterations;
   j["maxRoughness"] = decimal(s.maxRoughness);
   j["edgeFade"] = decimal(s.edgeFade);
+  j["viewRadianceCap"] = decimal(s.viewRadianceCap);
   j["constantRoughness"] = s.constantRoughness ? nlohmann::ordered_json(decimal(*s.constantRoughness)) : nullptr;
   j["glossyHitRoughness"] = decimal(s.glossyHitRoughness);
   j["samplesPerPixel"] = s.samplesPerPixel;

@@ -23,7 +23,7 @@ int maxIterations(const TraceSettings& s) {
 namespace {
 auto fields(const TraceSettings& s) {
   return std::tie(s.thicknessModel, s.thicknessRelative, s.thicknessScale, s.thicknessMinRelative,
-                  s.thicknessMaxRelative, s.maxIterations, s.maxRoughness, s.edgeFade, s.constantRoughness,
+                  s.thicknessMaxRelative, s.maxIterations, s.maxRoughness, s.edgeFade, s.viewRadianceCap, s.constantRoughness,
                   s.glossyHitRoughness, s.samplesPerPixel, s.fullRaysRoughness, s.seed, s.roughnessMapping,
                   s.mirrorRoughness, s.reuseRadius, s.prefilter, s.tracer, s.linearStepPixels, s.denoise,
                   s.traceStride, s.countWork, s.classifyWork, s.environmentRotation, s.environmentIntensity);
@@ -47,6 +47,8 @@ void validateSettings(const TraceSettings& s) {
     throw Error(ErrorCode::InvalidArgument, "parameter max-roughness must be in [0, 1]");
   if (!(s.edgeFade >= 0.0f && s.edgeFade <= 0.5f))
     throw Error(ErrorCode::InvalidArgument, "parameter edge-fade must be in [0, 0.5]");
+  if (!(s.viewRadianceCap >= 0.0f && s.viewRadianceCap <= 1e6f))
+    throw Error(ErrorCode::InvalidArgument, "parameter view-radiance-cap must be in [0, 1e6] (0: no cap)");
   if (!(s.environmentIntensity >= 0.0f && s.environmentIntensity <= 1e6f))
     throw Error(ErrorCode::InvalidArgument, "parameter environment-intensity must be in [0, 1e6]");
   if (!std::isfinite(s.environmentRotation))

@@ -134,7 +134,11 @@ void ViewStage::prepare(cl::CommandQueue& q, std::vector<ViewSource>& views, con
   }
 }
 
-void ViewStage::limitRadiance(const float* color, size_t pixels, int channels) {
+void ViewStage::limitRadiance(const float* color, size_t pixels, int channels, float cap) {
+  if (cap == 0.0f) {
+    radianceLimit_ = INFINITY;
+    return;
+  }
   std::vector<float> means;
   means.reserve(pixels);
   for (size_t i = 0; i < pixels; ++i) {
@@ -148,7 +152,7 @@ void ViewStage::limitRadiance(const float* color, size_t pixels, int channels) {
   }
   const auto at = means.begin() + means.size() * 99 / 100;
   std::nth_element(means.begin(), at, means.end());
-  radianceLimit_ = 2.0f * *at;
+  radianceLimit_ = cap * *at;
 }
 
 void ViewStage::trace(cl::CommandQueue& q, const TraceParams& batch, StageEvents& events) {

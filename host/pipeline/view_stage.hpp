@@ -44,11 +44,12 @@ class ViewStage {
   void prepare(cl::CommandQueue& q, std::vector<ViewSource>& views, const TraceSettings& s, StageEvents& events);
   // The unresolved rays of one trace batch, in their views ("views" events).
   void trace(cl::CommandQueue& q, const TraceParams& batch, StageEvents& events);
-  // Caps the mean rgb of view hits at twice the frame's 99th percentile: as bright as the frame's
-  // lit surfaces may be, a light source may not. A lamp the frame does not show but a view does
-  // (a ceiling lamp above the camera) is met by the few rays of a lobe's tail: bright and rare, it
-  // adds speckle that costs more than the light it brings (docs/BENCHMARKS.md, wide_corridor).
-  void limitRadiance(const float* color, size_t pixels, int channels);
+  // Caps the mean rgb of view hits at `cap` times the frame's 99th percentile (0: no cap): as
+  // bright as the frame's lit surfaces may be, a light source may not. A lamp the frame does not
+  // show but a view does (a ceiling lamp above the camera) is met by the few rays of a lobe's tail:
+  // bright and rare, it adds speckle that costs more than the light it brings
+  // (TraceSettings::viewRadianceCap).
+  void limitRadiance(const float* color, size_t pixels, int channels, float cap);
   size_t count() const { return units_.size(); }
 
  private:

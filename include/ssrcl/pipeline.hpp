@@ -67,6 +67,13 @@ struct TraceSettings {
   // a hit there is as right as anywhere, and fading it took 0.5-0.9 dB off both corpora's means
   // (docs/BENCHMARKS.md, the edge fade); a fade softens the seam where a fill takes over.
   float edgeFade = 0.0f;
+  // Hits auxiliary views find (Pipeline::setView) keep a mean rgb of at most this many times the
+  // frame's 99th percentile; 0: no cap. A lamp only a view shows, met by a few rays of a lobe's
+  // tail, is speckle that costs more than its light (wide_corridor: 28.82 dB capped at 2, 28.66
+  // without). `ssrcl batch --temporal K` raises it to 2 sqrt(2K + 1): the blend averages as many
+  // frames, which shrinks a rare hit's speckle by their square root but not the cap's loss of
+  // light (docs/BENCHMARKS.md "The views' cap under the blend").
+  float viewRadianceCap = 2.0f;
   // Set (in [0, 1]): every pixel has this roughness and no roughness image is read. Unset: the
   // "roughness" image gives each pixel's.
   std::optional<float> constantRoughness;
