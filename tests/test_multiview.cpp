@@ -7,6 +7,7 @@
 #include <cstring>
 #include <filesystem>
 #include <iostream>
+#include <utility>
 
 #include "scenes/analytic_scene.hpp"
 #include "ssrcl/error.hpp"
@@ -55,6 +56,15 @@ double maxAbsDiff(const dvec3& expected, const ssrcl::Image& img, int x, int y) 
   double d = 0;
   for (int c = 0; c < 3; ++c) d = std::max(d, std::abs(double(img.at(x, y, c)) - expected[c]));
   return d;
+}
+
+// The scene seen through a 30-degree lens (the frame) and a 75-degree one (the view) from the same
+// eye: the view shows what the frame's floor reflects from above it.
+std::pair<ViewParams, ViewParams> narrowAndWide(const Scene& scene) {
+  ViewParams frame = scene.view, wide = scene.view;
+  frame.fovYDegrees = 30.0;
+  wide.fovYDegrees = 75.0;
+  return {frame, wide};
 }
 
 struct Pass {
@@ -135,9 +145,7 @@ WithAndWithout compare(const Scene& scene, const ViewParams& frameParams, const 
 // view from the same eye shows them.
 TEST(Multiview, OffScreenReflectionsComeFromAWideView) {
   const Scene scene = makeScene("spheres_on_mirror");
-  ViewParams frameParams = scene.view, wideParams = scene.view;
-  frameParams.fovYDegrees = 30.0;
-  wideParams.fovYDegrees = 75.0;
+  const auto [frameParams, wideParams] = narrowAndWide(scene);
   const auto [with, without] = compare(scene, frameParams, wideParams, ReflectionClass::OffScreen);
   std::cout << "off-screen hits the wide view sees: " << with.pixels << "; with it exact " << with.fraction(with.exact)
             << ", from the view " << with.fraction(with.fromView) << "; without it found "
@@ -156,9 +164,7 @@ TEST(Multiview, OffScreenReflectionsComeFromAWideView) {
 // so the default cap (2) and none (0) leave them exact; a cap of 0.05 dims every one.
 TEST(Multiview, TheViewCapDimsOnlyWhatIsBrighterThanItAllows) {
   const Scene scene = makeScene("spheres_on_mirror");
-  ViewParams frameParams = scene.view, wideParams = scene.view;
-  frameParams.fovYDegrees = 30.0;
-  wideParams.fovYDegrees = 75.0;
+  const auto [frameParams, wideParams] = narrowAndWide(scene);
   const ssrcl::Camera camera = makeCamera(frameParams, 240, 135);
   const AnalyticGBuffer g = renderGBuffer(scene, camera);
   const MirrorTruth truth = exactMirrorReflection(scene, camera, g);
@@ -179,9 +185,7 @@ TEST(Multiview, TheViewCapDimsOnlyWhatIsBrighterThanItAllows) {
 // finds a ray at a time, to the bit.
 TEST(Multiview, PacketsTraceAsTheScalarHiZ) {
   const Scene scene = makeScene("spheres_on_mirror");
-  ViewParams frameParams = scene.view, wideParams = scene.view;
-  frameParams.fovYDegrees = 30.0;
-  wideParams.fovYDegrees = 75.0;
+  const auto [frameParams, wideParams] = narrowAndWide(scene);
   const View frame = renderView(scene, frameParams, 160, 90), wide = renderView(scene, wideParams, 160, 90);
   auto run = [&](const char* options) {
     const ssrcl::test::ScopedEnv env("SSRCL_KERNEL_BUILD_OPTIONS", options);
@@ -311,9 +315,7 @@ TEST(Multiview, ClearedViewsGiveTheSinglePassBitForBit) {
 // pass (view 0 was not read again); replacing view 0 shows the black (so the test can fail).
 TEST(Multiview, ReplacingAViewLeavesTheOthersPrepared) {
   const Scene scene = makeScene("spheres_on_mirror");
-  ViewParams frameParams = scene.view, wideParams = scene.view;
-  frameParams.fovYDegrees = 30.0;
-  wideParams.fovYDegrees = 75.0;
+  const auto [frameParams, wideParams] = narrowAndWide(scene);
   const ssrcl::Camera camera = makeCamera(frameParams, 160, 90);
   const AnalyticGBuffer g = renderGBuffer(scene, camera);
   View wide = renderView(scene, wideParams, 320, 180);
