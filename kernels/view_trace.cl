@@ -109,8 +109,8 @@ __kernel void trace_views(ViewTraceParams params, __global const ViewCamera* vie
   const int2 size = (int2)(cam.width, cam.height);
   // The rays of SSRCL_TRACE_PIXELS listed pixels per work-item, in rounds of the ones that go on
   // in this view, traced together (trace.cl trace_round) and then taken or left one by one.
-  const TraceScene view_scene = {size, levels, params.level_count, planes, normals, params.max_iterations, 0, 0, 0, 0, 0,
-                                  range};
+  const TraceScene view_scene = {size, levels, params.level_count, planes, normals, params.max_iterations,
+                                  0,    0,      0,                  0,      0,       range};
   int next;
   const int end = work_item_rays(params.listed, batch_size, &next);
   while (next < end) {

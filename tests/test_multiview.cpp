@@ -72,7 +72,8 @@ struct Pass {
 };
 
 Pass trace(const AnalyticGBuffer& g, const ssrcl::Camera& camera, const std::vector<const View*>& views,
-           ssrcl::ViewTime time = ssrcl::ViewTime::Same, float viewRadianceCap = ssrcl::TraceSettings{}.viewRadianceCap) {
+           ssrcl::ViewTime time = ssrcl::ViewTime::Same,
+           float viewRadianceCap = ssrcl::TraceSettings{}.viewRadianceCap) {
   ssrcl::Device device = testDevice();
   ssrcl::Pipeline p(device);
   p.setGBuffer(g);
@@ -170,7 +171,8 @@ TEST(Multiview, TheViewCapDimsOnlyWhatIsBrighterThanItAllows) {
   const MirrorTruth truth = exactMirrorReflection(scene, camera, g);
   const View wide = renderView(scene, wideParams, 480, 270);
   const auto exact = [&](float cap) {
-    const Score s = score(g, truth, ReflectionClass::OffScreen, wide, trace(g, camera, {&wide}, ssrcl::ViewTime::Same, cap));
+    const Pass pass = trace(g, camera, {&wide}, ssrcl::ViewTime::Same, cap);
+    const Score s = score(g, truth, ReflectionClass::OffScreen, wide, pass);
     EXPECT_GT(s.pixels, 200u);
     return s.fraction(s.exact);
   };

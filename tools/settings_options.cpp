@@ -103,8 +103,8 @@ void addSettingsOptions(CLI::App& cmd, SettingsOptions& o) {
       ->group(m);
   cmd.add_option("--view-radiance-cap", o.viewRadianceCap,
                  "Hits found in views or neighbouring frames keep at most this many times the frame's 99th "
-                 "percentile of brightness (0: no cap; default 2, and 2 sqrt(2K + 1) in a batch that blends K frames on "
-                 "each side)")
+                 "percentile of brightness (0: no cap; default 2, and 2 sqrt(2K + 1) in a batch that blends K "
+                 "frames on each side)")
       ->group(m);
 
   const char* e = "Environment";

@@ -11,7 +11,8 @@ namespace ssrcl::cli {
 // overrides that preset's value.
 struct SettingsOptions {
   std::string quality = "medium";
-  std::optional<float> maxRoughness, thickness, edgeFade, mirrorRoughness, linearStep, fullRaysRoughness, viewRadianceCap;
+  std::optional<float> maxRoughness, thickness, edgeFade, mirrorRoughness, linearStep, fullRaysRoughness;
+  std::optional<float> viewRadianceCap;
   std::optional<int> maxIterations, spp, reuseRadius, traceStride;
   std::optional<uint32_t> seed;
   std::optional<std::string> roughnessMapping, tracer, thicknessModel;
