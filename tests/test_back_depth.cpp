@@ -4,9 +4,6 @@
 // The thickness it gives each pixel is checked against the CPU reference in test_differential.
 #include <gtest/gtest.h>
 
-#include <OpenEXR/ImfInputFile.h>
-#include <OpenEXR/ImfStringAttribute.h>
-
 #include <cmath>
 #include <string>
 
@@ -130,9 +127,7 @@ TEST(BackDepth, BackFacesLayerOfTheFrameIsReadWithNoOption) {
   EXPECT_TRUE(loadFrame(plain).gbuffer.backDepth.empty());
 }
 
-std::string inputsRecord(const std::string& exr) {
-  return Imf::InputFile(exr.c_str()).header().typedAttribute<Imf::StringAttribute>("ssrcl/inputs").value();
-}
+std::string inputsRecord(const std::string& exr) { return ssrcl::test::stringAttribute(exr, "ssrcl/inputs"); }
 
 // `ssrcl trace --back-depth-file` (and --back-depth-channel): traced with it (recorded in
 // ssrcl/inputs, a different pass),

@@ -3,9 +3,6 @@
 // the pipeline traced with) and, where it affects this frame, the pixels; the input options that
 // no other test exercises give the pixels of the equivalent input; and every option in
 // `ssrcl trace --help` is checked here or in a named test file.
-#include <OpenEXR/ImfHeader.h>
-#include <OpenEXR/ImfInputFile.h>
-#include <OpenEXR/ImfStringAttribute.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -74,8 +71,7 @@ const Traced& trace(std::string args) {
                             " " + args);
   if (r.exitCode != 0) throw std::runtime_error("ssrcl trace " + args + " failed: " + r.output);
   Traced t;
-  Imf::InputFile file(out.c_str());
-  t.settings = json::parse(file.header().typedAttribute<Imf::StringAttribute>("ssrcl/settings").value());
+  t.settings = json::parse(ssrcl::test::stringAttribute(out, "ssrcl/settings"));
   for (auto& [name, channel] : ssrcl::test::readExr(out).channels) t.pixels[name] = channel.values;
   return cache.emplace(key, std::move(t)).first->second;
 }

@@ -2,7 +2,6 @@
 // variant traces, through `ssrcl trace` as a user runs it, to the original's reflection pass; each
 // wrong declaration is refused before tracing with exit 2, naming the pass and the fixing option.
 #include <OpenEXR/ImfFloatAttribute.h>
-#include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfIntAttribute.h>
 #include <OpenEXR/ImfMatrixAttribute.h>
 #include <OpenEXR/ImfStringAttribute.h>
@@ -681,8 +680,7 @@ TEST_P(Conventions, KarmaFieldOfViewFromPositions) {
                                 shellQuote(out)));
   ASSERT_EQ(r.exitCode, 0) << r.output;
   expectSameAs(out, nullptr);
-  const std::string inputs =
-      Imf::InputFile(out.c_str()).header().typedAttribute<Imf::StringAttribute>("ssrcl/inputs").value();
+  const std::string inputs = ssrcl::test::stringAttribute(out, "ssrcl/inputs");
   EXPECT_NE(inputs.find("worldToCamera + field of view "), std::string::npos) << inputs;
   EXPECT_NE(inputs.find(" fitted to the positions (median "), std::string::npos) << inputs;
 
@@ -785,8 +783,7 @@ TEST(OrthographicHeaderCamera, PassesDecideWhichWayItLooks) {
     const auto t = runCommand(cli("trace " + shellQuote(input) + " --layer '' " + options + " -o " + shellQuote(out)));
     ASSERT_EQ(t.exitCode, 0) << t.output;
     expectSamePass(referencePass, out);
-    const std::string inputs =
-        Imf::InputFile(out.c_str()).header().typedAttribute<Imf::StringAttribute>("ssrcl/inputs").value();
+    const std::string inputs = ssrcl::test::stringAttribute(out, "ssrcl/inputs");
     EXPECT_NE(inputs.find(looking), std::string::npos) << inputs;
     RecordProperty(std::filesystem::path(input).stem().string(), inputs);
   };

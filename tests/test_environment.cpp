@@ -7,14 +7,10 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <nlohmann/json.hpp>
 
 #include "scenes/analytic_scene.hpp"
 #include "ssrcl/ssrcl.hpp"
-#include <OpenEXR/ImfInputFile.h>
-#include <OpenEXR/ImfStringAttribute.h>
-
-#include <nlohmann/json.hpp>
-
 #include "support/cycles_reference.hpp"
 #include "support/exr_fixtures.hpp"
 #include "support/run_command.hpp"
@@ -413,10 +409,9 @@ TEST(Environment, CliFillsAndRecordsTheEnvironment) {
       ssrcl::test::runCommand(trace + " -o " + ssrcl::test::shellQuote(out) + " --environment " +
                               ssrcl::test::shellQuote(sky) + " --environment-rotation 30 --environment-intensity 1.5");
   ASSERT_EQ(ok.exitCode, 0) << ok.output;
-  const Imf::Header header = Imf::InputFile(out.c_str()).header();
-  const auto inputs = nlohmann::json::parse(header.typedAttribute<Imf::StringAttribute>("ssrcl/inputs").value());
+  const auto inputs = nlohmann::json::parse(ssrcl::test::stringAttribute(out, "ssrcl/inputs"));
   EXPECT_EQ(inputs.at("environment"), sky);
-  const auto settings = nlohmann::json::parse(header.typedAttribute<Imf::StringAttribute>("ssrcl/settings").value());
+  const auto settings = nlohmann::json::parse(ssrcl::test::stringAttribute(out, "ssrcl/settings"));
   EXPECT_EQ(settings.at("environmentRotation"), 30.0);
   EXPECT_EQ(settings.at("environmentIntensity"), 1.5);
 

@@ -8,6 +8,7 @@
 #include <OpenEXR/ImfMultiPartOutputFile.h>
 #include <OpenEXR/ImfOutputPart.h>
 #include <OpenEXR/ImfPartType.h>
+#include <OpenEXR/ImfStringAttribute.h>
 #include <OpenEXR/ImfTiledOutputPart.h>
 
 #include <cstdint>
@@ -113,6 +114,10 @@ std::vector<float> pattern(int width, int height, float seed) {
   std::vector<float> values(std::size_t(width) * height);
   for (std::size_t i = 0; i < values.size(); ++i) values[i] = seed + 0.0371f * float(i) - 0.5f;
   return values;
+}
+
+std::string stringAttribute(const std::string& path, const char* name) {
+  return Imf::InputFile(path.c_str()).header().typedAttribute<Imf::StringAttribute>(name).value();
 }
 
 std::string readBytes(const std::string& path) {

@@ -56,6 +56,10 @@ float storedValue(Imf::PixelType type, float value);
 // width * height distinct, non-round values, so a misplaced pixel or channel shows.
 std::vector<float> pattern(int width, int height, float seed);
 
+// A string attribute of a file's (first part's) header, e.g. ssrcl's "ssrcl/settings" record.
+// Throws where the file has none of that name.
+std::string stringAttribute(const std::string& path, const char* name);
+
 // Whole-file byte access, for corrupting files.
 std::string readBytes(const std::string& path);
 void writeBytes(const std::string& path, const std::string& bytes);
