@@ -238,7 +238,13 @@ struct NativeMirrorTrace::Impl {
     const auto side = [&](float t) { const vec4 q = ray.q(t); return glm::dot(vec3(q), n) - q.w * glm::dot(vec3(pc), n); };
     const float gIn = side(tIn), gOut = side(tOut);
     inFront = gOut > 0.0f;
-    if (!(glm::dot(n, dir) < 0.0f)) return -1.0f;
+    if (!(glm::dot(n, dir) < 0.0f)) {  // facing away: a hit only where the ray enters through its back
+      const vec4 qIn = ray.q(tIn);
+      const float hIn = gIn + thickness[idx] * qIn.w, hOut = gOut + thickness[idx] * ray.q(tOut).w;
+      const bool entry = hIn < 0.0f && hOut >= 0.0f &&
+                         std::fabs(glm::dot(n, vec3(qIn))) >= 0.1f * glm::length(n) * glm::length(vec3(qIn));
+      return entry ? tIn + (tOut - tIn) * (hIn / (hIn - hOut)) : -1.0f;
+    }
     if (gIn > 0.0f && gOut <= 0.0f) return tIn + (tOut - tIn) * (gIn / (gIn - gOut));
     if (gIn <= 0.0f && -gIn / ray.q(tIn).w <= thickness[idx]) return tIn;
     return -1.0f;

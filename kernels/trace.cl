@@ -103,8 +103,13 @@ typedef struct {
   int2 past_cell;
   // SSRCL_VIEWS only: the ray was behind a pixel's surface somewhere on its way (facing it or not).
   int hidden;
-  // SSRCL_BACK_KNOWN: the hit is where the ray entered a surface with a known back through that back.
+  // The hit is where the ray entered a surface through its back (hit_pixel).
   int entered;
+  // Rays may enter surfaces through their backs: in the frame's own trace. A view (view_trace.cl)
+  // is there to find what the frame hides, and its rays go on behind the surfaces it shows
+  // (test_multiview's exact hidden and off-screen hits: 0.812 and 0.953; 0.780 and 0.944 with
+  // entries in the views).
+  int enters;
 } TraceScene;
 
 // The ray's signed distance to a pixel's plane (n, dot(p, n)) / thickness, in thicknesses, times
@@ -114,11 +119,21 @@ inline float plane_side(const ScreenRay* r, float t, float4 plane) {
   return dot(q.xyz, plane.xyz) - q.w * plane.w;
 }
 
+// Whether a ray may enter a pixel's surface through its back where it stands at view-space point q
+// (|n.q|, |n|^2, |q|^2 given): not through a plane seen within SSRCL_ENTRY_MIN_COS of edge-on. Over
+// its pixel such a plane runs far from the surface the pixel shows (at a sphere's silhouette, its
+// tangent plane): rays that left a sphere entered its silhouette pixels' backs and took their black,
+// 2.6% of an analytic mirror frame's exact misses (0.2% with the bound); the real corpus's entries
+// (a table top's, a stool's underside) are through planes seen 6 degrees and more from edge-on.
+#define SSRCL_ENTRY_MIN_COS 0.1f
+inline int entry_facing(float nq, float nn, float qq) { return nq >= SSRCL_ENTRY_MIN_COS * sqrt(nn) * sqrt(qq); }
+inline int8 entry_facing8(float8 nq, float8 nn, float8 qq) { return nq >= SSRCL_ENTRY_MIN_COS * sqrt(nn) * sqrt(qq); }
+
 // The exact test against one pixel's surface (the plane through its point with its normal) for
 // the ray's stretch [t_in, t_out] over that pixel: a hit where the ray crosses the plane from its
 // front, or where it is already behind by less than the thickness (surfaces are assumed that
-// thick). Surfaces facing away from the ray cannot be reached from their front; with a known back
-// (SSRCL_BACK_KNOWN), through it. Returns the hit's t or -1;
+// thick). Surfaces facing away from the ray cannot be reached from their front, only through their
+// back. Returns the hit's t or -1;
 // *in_front tells whether the ray leaves the stretch in front of the surface.
 inline float hit_pixel(TraceScene* sc, const ScreenRay* ray, float3 dir, int2 cell, float t_in, float t_out,
                        bool* in_front) {
@@ -138,18 +153,21 @@ inline float hit_pixel(TraceScene* sc, const ScreenRay* ray, float3 dir, int2 ce
   if (g_in <= 0.0f || g_out <= 0.0f) sc->hidden = 1;
 #endif
   if (!(dot(plane.xyz, dir) < 0.0f)) {
-#if SSRCL_BACK_KNOWN
-    // A surface facing away whose back is known is still solid: a ray that enters it through its
-    // back (from behind the back to within the thickness: h = g + k goes from < 0 to >= 0) stops
-    // there, on a face the screen does not show (shaded black: trace_rays).
-    if (sc->guess[cell.y * sc->size.x + cell.x] > 0.0f) {
-      float h_in = g_in + ray_q(ray, t_in).w, h_out = g_out + ray_q(ray, t_out).w;
-      if (h_in < 0.0f && h_out >= 0.0f) {
-        sc->entered = 1;
-        return t_in + (t_out - t_in) * (h_in / (h_in - h_out));
-      }
-    }
+    // A surface facing away is still solid, as thick as its record says (the back-face pass's exact
+    // back where it gives one, the thickness model's guess elsewhere): a ray that enters it through
+    // its back (from behind the back to within the thickness: h = g + k goes from < 0 to >= 0) stops
+    // there, on a face the screen does not show (shaded black: trace_rays), as a ray from a floor
+    // meets a table top's underside. docs/BENCHMARKS.md "Rays that enter a surface's back".
+    const float4 q_in = ray_q(ray, t_in);
+    const float h_in = g_in + q_in.w, h_out = g_out + ray_q(ray, t_out).w;
+    if (sc->enters && h_in < 0.0f && h_out >= 0.0f && entry_facing(fabs(dot(plane.xyz, q_in.xyz)), dot(plane.xyz, plane.xyz),
+                                                     dot(q_in.xyz, q_in.xyz))) {
+      sc->entered = 1;
+#if SSRCL_VIEWS
+      sc->thick = 1;  // a face no pass shows: a view that sees the ray's whole way may replace it
 #endif
+      return t_in + (t_out - t_in) * (h_in / (h_in - h_out));
+    }
     return -1.0f;
   }
   if (g_in > 0.0f && g_out <= 0.0f) return t_in + (t_out - t_in) * (g_in / (g_in - g_out));
@@ -319,14 +337,20 @@ __attribute__((always_inline)) inline float8 hit_pixel8(const TraceScene* sc, co
   *g_past = g_in;
   float8 t_hit = select((float8)(-1.0f), t_in, within);
 #if SSRCL_BACK_KNOWN
-  {  // hit_pixel's entry through a known back
-    *guess = gather8(sc->guess, q);
+  *guess = gather8(sc->guess, q);
+#endif
+  {  // hit_pixel's entry through a surface's back
     float8 h_in = g_in + k_in, h_out = g_out + (r->q0w + t_out * r->dqw);
-    int8 entry = lanes & ~sky & ~facing & (*guess > 0.0f) & (h_in < 0.0f) & (h_out >= 0.0f);
+    int8 entry = sc->enters ? lanes & ~sky & ~facing & (h_in < 0.0f) & (h_out >= 0.0f) : (int8)(0);
+    if (any_lane(entry)) {  // rare: the plane's angle only then
+      const float8 qx = r->q0x + t_in * r->dqx, qy = r->q0y + t_in * r->dqy, qz = r->q0z + t_in * r->dqz;
+      entry &= entry_facing8(fabs(dot_lanes(px, py, pz, qx, qy, qz)), dot_lanes(px, py, pz, px, py, pz),
+                            dot_lanes(qx, qy, qz, qx, qy, qz));
+    }
     *entered = entry;
+    *thick |= entry;  // as hit_pixel's
     t_hit = select(t_hit, t_in + (t_out - t_in) * (h_in / (h_in - h_out)), entry);
   }
-#endif
   return select(t_hit, t_in + (t_out - t_in) * (g_in / (g_in - g_out)), crossing);
 }
 
@@ -446,7 +470,7 @@ inline bool packet_step(Packet8* p, const TraceScene* sc) {
     if (SSRCL_COUNT_WORK) p->fetches -= test;
     hit = test & (t_pixel >= 0.0f);
     stay = test & ~in_front & (d_end <= hi);
-    if (SSRCL_BACK_KNOWN) p->entered |= hit & entered_now;
+    p->entered |= hit & entered_now;
     p->t_hit = select(p->t_hit, t_pixel, hit);
     p->hit_x = select(p->hit_x, p->cx, hit);
     p->hit_y = select(p->hit_y, p->cy, hit);
@@ -798,7 +822,7 @@ __kernel void trace_rays(TraceParams params, __global const float2* range, __glo
   // made one by one (skipping the slots a pixel has no ray in, so lanes stay full where pixels have
   // one ray, as mirror pixels do), traced together in lanes (Hi-Z), then shaded one by one.
   const TraceScene frame_scene = {size, levels, level_count, planes, normals, params.max_iterations, 0, 0, 0, 0, 0,
-                                   range, guess, 0, -1.0f, (int2)(0)};
+                                   range, guess, 0, -1.0f, (int2)(0), 0, 0, 1};
   int next;
   const int end = work_item_rays(params.listed, batch_size, &next);
   while (next < end) {
@@ -930,10 +954,10 @@ __kernel void trace_rays(TraceParams params, __global const float2* range, __glo
       int q = cell.y * size.x + cell.x;
       // A prefiltered hit is looked up once the batch's hits are counted (hit_prefilter.cl): recorded
       // as the screen position and the mip of its footprint.
-      // A hit on a known back (hit_pixel, SSRCL_BACK_KNOWN) is on a face the screen does not show,
-      // which its light seldom reaches (the underside of a seat, a plank's): black, neither looked up
+      // A hit through a surface's back (hit_pixel) is on a face the screen does not show, which its
+      // light seldom reaches (the underside of a seat, a table top, a plank): black, neither looked up
       // nor bounced. Measured against the model's guess and against leaving the ray a miss:
-      // docs/BENCHMARKS.md "Back-face depth".
+      // docs/BENCHMARKS.md "Rays that enter a surface's back".
       const bool black = sc->entered;
       bool prefiltered = !black && prefiltered_hit(sc, q, mirror ? 0.0f : alpha, params.cone_scale);
       hit_radiance[k] =

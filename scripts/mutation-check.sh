@@ -69,7 +69,8 @@ MUTANTS=(
   "neighbour_normal_check_off|0|resolve.cl|&& dot_lanes(f.nx, f.ny, f.nz, n_q.x, n_q.y, n_q.z) >= 0.9f|/* mutant */|$CREASE"
   "second_ray_finds_nothing|0|trace.cl|if (t2 < 0.0f) return (float4)(0.0f, 0.0f, 0.0f, -1.0f);|return (float4)(0.0f, 0.0f, 0.0f, -1.0f);|$GLOSSY_HITS"
   "clear_ignores_hidden|0|trace.cl|(t < 0.0f && !sc->hidden &&|(t < 0.0f && !sc->behind &&|$HIDDEN"
-  "back_entry_off|0|trace.cl|if (h_in < 0.0f && h_out >= 0.0f) {|if (false) {|$BACK"
+  "back_entry_off|0|trace.cl|if (sc->enters && h_in < 0.0f && h_out >= 0.0f &&|if (false &&|$BACK"
+  "entry_angle_unbounded|0|trace.cl|{ return nq >= SSRCL_ENTRY_MIN_COS * sqrt(nn) * sqrt(qq); }|{ return 1; }|$DIFFERENTIAL"
   "skip_forgets_passage|0|trace.cl|const int8 beyond = p->active & (fmin(p->d_t, d_end) > hi);|const int8 beyond = 0;|$HIDDEN"
   "fill_point_sample|0|environment.cl|#define SSRCL_FILL_FOOTPRINT 0.21f|#define SSRCL_FILL_FOOTPRINT 0.0f|$FOOTPRINT"
 )

@@ -147,11 +147,13 @@ std::vector<CpuRay> cpuMirrorTrace(const Camera& camera, const Image& depth, con
         const double g0 = side(t0), g1 = side(t1);
         double tHit = -1;
         if (!(glm::dot(nq, dir) < 0)) {
-          // Facing away: a known back is entered from behind it (g + thickness / w crosses 0 upward).
-          if (!(sf.guess[q] > 0)) return false;
+          // Facing away: its back (known, or one thickness behind) is entered from behind it
+          // (g + thickness / w crosses 0 upward).
           const double h0 = g0 + sf.behind[q] * (seg.q0.w + t0 * seg.dq.w);
           const double h1 = g1 + sf.behind[q] * (seg.q0.w + t1 * seg.dq.w);
-          if (!(h0 < 0 && h1 >= 0)) return false;
+          // Not through a plane seen within cos 0.1 of edge-on (kernels/trace.cl entry_facing).
+          const dvec3 at = seg.at(t0);
+          if (!(h0 < 0 && h1 >= 0) || std::abs(glm::dot(nq, at)) < 0.1 * glm::length(at)) return false;
           tHit = t0 + (t1 - t0) * (h0 / (h0 - h1));
           ray.enteredBack = true;
         } else if (g0 > 0 && g1 <= 0) {

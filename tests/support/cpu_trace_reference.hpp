@@ -49,7 +49,7 @@ struct CpuRay {
   bool traced = false;  // the pixel has a surface and a usable normal facing the viewer
   bool hit = false;
   bool pastBack = false;  // the hit is a passage behind a known back, within the constant's bound
-  bool enteredBack = false;  // the hit is where the ray entered a surface through its known back
+  bool enteredBack = false;                // the hit is where the ray entered a surface through its back
   int hitX = -1, hitY = -1;                // the pixel whose plane was hit
   glm::dvec3 origin{0.0}, direction{0.0};  // view space
   glm::dvec3 hitPoint{0.0};
