@@ -160,8 +160,8 @@ inline float hit_pixel(TraceScene* sc, const ScreenRay* ray, float3 dir, int2 ce
     // meets a table top's underside. docs/BENCHMARKS.md "Rays that enter a surface's back".
     const float4 q_in = ray_q(ray, t_in);
     const float h_in = g_in + q_in.w, h_out = g_out + ray_q(ray, t_out).w;
-    if (sc->enters && h_in < 0.0f && h_out >= 0.0f && entry_facing(fabs(dot(plane.xyz, q_in.xyz)), dot(plane.xyz, plane.xyz),
-                                                     dot(q_in.xyz, q_in.xyz))) {
+    if (sc->enters && h_in < 0.0f && h_out >= 0.0f &&
+        entry_facing(fabs(dot(plane.xyz, q_in.xyz)), dot(plane.xyz, plane.xyz), dot(q_in.xyz, q_in.xyz))) {
       sc->entered = 1;
 #if SSRCL_VIEWS
       sc->thick = 1;  // a face no pass shows: a view that sees the ray's whole way may replace it

@@ -23,8 +23,9 @@
 // then differs; a step's test of a back's entry is the crossing test's twin and flips the same way.
 // Asserted floors, at the measured values less a margin for those float-rounding flips on another
 // OpenCL platform (a GPU rounds differently from PoCL's CPU): 99.95% for DDA and Hi-Z (120 pixels),
-// 99.5% for linear (140 pixels). The margins are what a wrong surface thickness (x0.5: DDA 99.877%, linear 99.563%;
-// x2: 99.776%, 99.493%) or hits on back faces (99.745%, 99.230%) exceed (scripts/mutation-check.sh).
+// 99.5% for linear (140 pixels). The margins are what a wrong surface thickness (x0.5: DDA 99.881%,
+// linear 99.442%; x2: 99.777%, 99.371%) or hits on back faces (99.008%, 98.371%) exceed
+// (scripts/mutation-check.sh; with the rule).
 #include <gtest/gtest.h>
 
 #include <cmath>
