@@ -33,7 +33,10 @@
 // stride, iterations, fade (the edge fade, a fraction of the smaller side), form (incident, the
 // default: our pass times E(F0 = 1) here; glossy-pass: the
 // pass `ssrcl trace --output-form glossy-pass` writes, compared with Cycles as it is, F0 from the
-// render's base_color / metallic AOVs where it has them, else 1 as the corpus's reflectors have).
+// render's base_color / metallic AOVs where it has them, else 1 as the corpus's reflectors have),
+// metal (1: where the render has no material AOVs, the glossy-pass form is given the corpus's
+// reflectors as what they are, base colour 1 and metallic 1, rather than an F0 pass of 1: its pure
+// metal pixels then take their render's colour; the trace is the same).
 // views (auxiliary views: the first N of <views dir>/<scene>.*.exr in name order, "all" every one;
 // samples/blender/make_views.py renders them; default 0),
 // "eevee" scores Blender EEVEE's own SSR (<scene>.eevee.exr) where it exists; "eevee:form=glossy-pass"
@@ -67,6 +70,7 @@ struct Config {
   bool glossyPasses = true;  // base and specular from the render's glossy passes, as `ssrcl trace` reads them
   bool materials = true;     // the render's material AOVs, where it has them, for those hits
   bool glossyPassForm = false;  // score the glossy-pass output form
+  bool metal = false;           // the corpus rule as metallic 1, base colour 1 for that form (key "metal")
   bool fill = true;             // with --environment: misses take it (fill=0: the premultiplied pass)
   size_t views = 0;             // auxiliary views used (SIZE_MAX: all found)
   bool backDepth = false;       // the scene's back-face depth pass, <scene>.back.exr beside it
@@ -148,6 +152,8 @@ Config parseConfig(const std::string& spec) {
       if (value != "incident" && value != "glossy-pass")
         throw std::runtime_error("configuration '" + spec + "': form is incident or glossy-pass");
       c.glossyPassForm = value == "glossy-pass";
+    } else if (key == "metal") {
+      c.metal = value == "1";
     } else if (key == "fill") {
       c.fill = value == "1";
     } else if (key == "views") {
@@ -338,12 +344,17 @@ int main(int argc, char** argv) {
       const auto& all = ref.groups.front().second;
       // For the glossy-pass form: the render's material AOVs (samples/blender/
       // make_tinted_glossy_scene.py), or the corpus's white metal, F0 = 1; and Cycles unscaled.
-      ssrcl::GBuffer withF0 = ref.gbuffer;
+      ssrcl::GBuffer withF0 = ref.gbuffer, asMetal;
       try {
         withF0 = ssrcl::test::withMaterialAovs(ref.gbuffer, scenes[s].path);
+        asMetal = withF0;
       } catch (const ssrcl::Error&) {  // no material AOVs: the corpus's rule
         withF0.f0 = ssrcl::Image(withF0.color.width, withF0.color.height, 3);
         std::fill(withF0.f0.data.begin(), withF0.f0.data.end(), 1.0f);
+        asMetal = ref.gbuffer;  // the same F0 (principledF0 of white at metallic 1)
+        asMetal.baseColor = withF0.f0;
+        asMetal.metallic = ssrcl::Image(withF0.color.width, withF0.color.height, 1);
+        std::fill(asMetal.metallic.data.begin(), asMetal.metallic.data.end(), 1.0f);
       }
       ssrcl::test::CyclesReference unscaled = ref;
       std::fill(unscaled.scale.begin(), unscaled.scale.end(), 1.0);
@@ -403,7 +414,8 @@ int main(int argc, char** argv) {
         }
         for (ssrcl::Image* p : {&passes[c], &seed2[c]})
           if (configs[c].glossyPassForm && !p->empty())
-            ssrcl::applyGlossyPassForm(*p, withF0, ref.camera, configs[c].settings.constantRoughness);
+            ssrcl::applyGlossyPassForm(*p, configs[c].metal ? asMetal : withF0, ref.camera,
+                                       configs[c].settings.constantRoughness);
         score.present = true;
       }
       std::vector<const ssrcl::Image*> present;

@@ -123,7 +123,8 @@ void bindIo(py::module_& m) {
       },
       py::arg("rgba"), py::arg("frame"), py::arg("constantRoughness") = py::none(),
       "The reflection pass in the glossy-pass form (`--output-form glossy-pass`): rgb times the specular lobe's "
-      "albedo E(view, roughness, F0), A unchanged, as a new array; `frame` from loadFrame(..., "
+      "albedo E(view, roughness, F0), A unchanged (pure metal pixels, metallic >= 0.999: their colour, A 1), as a "
+      "new array; `frame` from loadFrame(..., "
       "outputForm='glossy-pass'); constantRoughness (None: the roughness pass) as the pipeline's.");
 
   m.def("writeReflectionExr", &writeExr, py::arg("path"), py::arg("rgba"), py::arg("distance"), py::arg("layer") = "",

@@ -103,6 +103,25 @@ class MixedPixels {
   int w_, h_;
 };
 
+// A pixel of a pure metal (Principled metallic 1 over the whole pixel): it has no diffuse,
+// subsurface, sheen or transmission lobe, so all the light its render shows is its glossy
+// reflection (Blender: Combined = GlossDir + GlossInd + Emit), off-screen content and every bounce
+// included: its glossy pass is its colour, exact where a screen-space trace only estimates it.
+// Edge pixels that are partly metal (a metallic AOV under 1) keep the trace.
+constexpr float kPureMetal = 0.999f;
+
+bool pureMetalColor(const GBuffer& g, std::size_t i, double cosO, float rgb[3]) {
+  if (g.metallic.data.empty() || !(g.metallic.data[i] >= kPureMetal) || !(cosO > 0) ||
+      g.color.data.size() != 3 * g.metallic.data.size())
+    return false;
+  for (int c = 0; c < 3; ++c) {
+    rgb[c] = g.color.data[3 * i + c];
+    if (!std::isfinite(rgb[c])) return false;
+    rgb[c] = std::clamp(rgb[c], 0.0f, 1e20f);  // the pass's radiance rule (kernels/common.cl sanitize_radiance)
+  }
+  return true;
+}
+
 }  // namespace
 
 void applyGlossyPassForm(Image& reflection, const GBuffer& g, const Camera& camera,
@@ -137,6 +156,12 @@ void applyGlossyPassForm(Image& reflection, const GBuffer& g, const Camera& came
                               ? glm::dot(n, toEye) / (nLength * eyeLength)
                               : 0.0;
       const double roughness = constantRoughness ? *constantRoughness : g.roughness.data[i];
+      float metal[3];
+      if (!fromF0 && pureMetalColor(g, i, cosO, metal)) {
+        for (int c = 0; c < 3; ++c) reflection.data[i * reflection.channels + c] = metal[c];
+        if (reflection.channels > 3) reflection.data[i * reflection.channels + 3] = 1.0f;  // all of it known
+        continue;
+      }
       const SpecularAlbedo e = specularAlbedo(roughness, cosO);
       // A mixed pixel's E: its source surface's by that surface's share, the mean's for the rest.
       const int source = eyeLength > 0 ? mixed.source(x, y) : -1;
