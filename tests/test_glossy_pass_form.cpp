@@ -453,8 +453,9 @@ TEST(GlossyPassForm, MixedPixelTakesItsSurfacesEByShare) {
 
 // Pure metal pixels (metallic 1) take their colour, A 1: with no diffuse, sheen or transmission
 // lobe, all of their render's light is their glossy reflection. A partly metal pixel (0.99), one
-// whose colour is not finite, and every pixel of an F0 pass (metal or not, it does not say) keep
-// the pass times E: against the quadrature of the lobe, as above.
+// whose colour is not finite, one whose glossy passes leave light that is not glossy (a metal
+// mixed with a diffuse shader, or emissive), and every pixel of an F0 pass (metal or not, it does
+// not say) keep the pass times E: against the quadrature of the lobe, as above.
 TEST(GlossyPassForm, PureMetalPixelsTakeTheirColour) {
   const int w = 4, h = 4;
   const ssrcl::Camera camera = ssrcl::test::perspectiveCamera(w, h);  // looks down at the floor y = 0
@@ -472,9 +473,12 @@ TEST(GlossyPassForm, PureMetalPixelsTakeTheirColour) {
   g.metallic = ssrcl::Image(w, h, 1);
   std::fill(g.metallic.data.begin(), g.metallic.data.end(), 1.0f);
   const auto cosO = [&](size_t i) { return ground.toEye[i].y; };
-  const size_t metal = 5, partly = 6, notFinite = 9;
+  const size_t metal = 5, partly = 6, notFinite = 9, mixed = 10, withPasses = 11;
   g.metallic.data[partly] = 0.99f;
   g.color.data[3 * notFinite + 1] = std::numeric_limits<float>::infinity();
+  g.base = ssrcl::Image(w, h, 3);               // the glossy passes' remainder: nil (their rounding) but at `mixed`
+  g.base.data[3 * withPasses] = 0.008f * 9.0f;  // 0.8% of the colour's sum (2 + 3 + 4)
+  g.base.data[3 * mixed] = 0.5f;
   ssrcl::Image pass(w, h, 4);
   std::fill(pass.data.begin(), pass.data.end(), 0.5f);
   ssrcl::Image fromF0 = pass;
@@ -486,6 +490,8 @@ TEST(GlossyPassForm, PureMetalPixelsTakeTheirColour) {
   EXPECT_NEAR(pass.data[4 * partly], 0.5 * albedoTruth(cosO(partly), roughness, f0Partly), 5e-3);
   EXPECT_EQ(pass.data[4 * partly + 3], 0.5f);
   EXPECT_NEAR(pass.data[4 * notFinite + 1], 0.5 * albedoTruth(cosO(notFinite), roughness, base), 5e-3);
+  EXPECT_NEAR(pass.data[4 * mixed], 0.5 * albedoTruth(cosO(mixed), roughness, base), 5e-3);
+  EXPECT_EQ(pass.data[4 * withPasses + 2], 4.0f);
   for (float v : pass.data) ASSERT_TRUE(std::isfinite(v));
 
   g.f0 = g.baseColor;  // an F0 pass is read first

@@ -107,13 +107,22 @@ class MixedPixels {
 // subsurface, sheen or transmission lobe, so all the light its render shows is its glossy
 // reflection (Blender: Combined = GlossDir + GlossInd + Emit), off-screen content and every bounce
 // included: its glossy pass is its colour, exact where a screen-space trace only estimates it.
-// Edge pixels that are partly metal (a metallic AOV under 1) keep the trace.
+// Edge pixels that are partly metal (a metallic AOV under 1) keep the trace. Where the file has
+// the glossy passes, its light that is not glossy (GBuffer::base) must be nil too: the AOV tells
+// only of the first Principled BSDF (or a Glossy BSDF, metallic 1) of a material, which a Mix
+// Shader may blend with a diffuse one, and an emissive metal's pass would hold its emission.
 constexpr float kPureMetal = 0.999f;
+constexpr double kNotGlossyShare = 0.01;  // of the colour: the passes' rounding, not light
 
 bool pureMetalColor(const GBuffer& g, std::size_t i, double cosO, float rgb[3]) {
   if (g.metallic.data.empty() || !(g.metallic.data[i] >= kPureMetal) || !(cosO > 0) ||
       g.color.data.size() != 3 * g.metallic.data.size())
     return false;
+  if (g.base.data.size() == g.color.data.size()) {
+    double notGlossy = 0, all = 0;
+    for (int c = 0; c < 3; ++c) notGlossy += std::abs(g.base.data[3 * i + c]), all += g.color.data[3 * i + c];
+    if (!(notGlossy <= kNotGlossyShare * all)) return false;
+  }
   for (int c = 0; c < 3; ++c) {
     rgb[c] = g.color.data[3 * i + c];
     if (!std::isfinite(rgb[c])) return false;
