@@ -95,6 +95,7 @@ TEST(RealCorpus, PureMetalPixelsAreTheRendersGlossyPass) {
   ssrcl::Image pass;
   const Traced t = trace("product_pepper", "", &pass);
   ASSERT_FALSE(pass.empty()) << t.output;
+  EXPECT_NE(t.output.find("pure metal pixels (metallic 1) take their render's colour"), std::string::npos) << t.output;
   ssrcl::test::CyclesReference ref = ssrcl::test::loadCyclesReference(kReal + "product_pepper.exr");
   std::fill(ref.scale.begin(), ref.scale.end(), 1.0);
   const ssrcl::GBuffer g = ssrcl::test::withMaterialAovs(ref.gbuffer, kReal + "product_pepper.exr");

@@ -53,9 +53,10 @@ std::string settleOutputForm(GBufferInputOptions& in, const Frame& frame) {
   return settle(in.form, {frame.outputForm, frame.outputFormWhy});
 }
 
-void toOutputForm(const OutputFormOptions& o, Image& reflection, const GBuffer& gbuffer, const Camera& camera,
-                  std::optional<float> constantRoughness) {
-  if (o.resolved() == OutputForm::GlossyPass) applyGlossyPassForm(reflection, gbuffer, camera, constantRoughness);
+std::size_t toOutputForm(const OutputFormOptions& o, Image& reflection, const GBuffer& gbuffer, const Camera& camera,
+                         std::optional<float> constantRoughness) {
+  if (o.resolved() != OutputForm::GlossyPass) return 0;
+  return applyGlossyPassForm(reflection, gbuffer, camera, constantRoughness);
 }
 
 }  // namespace ssrcl::cli

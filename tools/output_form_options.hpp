@@ -34,7 +34,8 @@ std::string settleOutputForm(GBufferInputOptions& in, const std::string& file);
 std::string settleOutputForm(GBufferInputOptions& in, const Frame& frame);
 
 // The pass in the form asked for: unchanged for incident, else times E (applyGlossyPassForm).
-void toOutputForm(const OutputFormOptions& o, Image& reflection, const GBuffer& gbuffer, const Camera& camera,
-                  std::optional<float> constantRoughness);
+// Returns how many pure metal pixels took their colour there.
+std::size_t toOutputForm(const OutputFormOptions& o, Image& reflection, const GBuffer& gbuffer, const Camera& camera,
+                         std::optional<float> constantRoughness);
 
 }  // namespace ssrcl::cli

@@ -82,7 +82,9 @@ int runTrace(TraceOptions& o) {
   Image formed;
   if (o.in.form.resolved() == OutputForm::GlossyPass) {
     formed = *reflection;
-    toOutputForm(o.in.form, formed, frame.gbuffer, camera, o.in.roughness);
+    if (const std::size_t metals = toOutputForm(o.in.form, formed, frame.gbuffer, camera, o.in.roughness))
+      std::cerr << "ssrcl: " << metals << " pure metal pixels (metallic 1) take their render's colour, their exact "
+                << "glossy pass\n";
     reflection = &formed;
   }
 

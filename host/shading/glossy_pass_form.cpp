@@ -133,8 +133,8 @@ bool pureMetalColor(const GBuffer& g, std::size_t i, double cosO, float rgb[3]) 
 
 }  // namespace
 
-void applyGlossyPassForm(Image& reflection, const GBuffer& g, const Camera& camera,
-                         std::optional<float> constantRoughness) {
+std::size_t applyGlossyPassForm(Image& reflection, const GBuffer& g, const Camera& camera,
+                                std::optional<float> constantRoughness) {
   const bool fromF0 = !g.f0.empty(), fromBase = !g.baseColor.empty() && !g.metallic.empty();
   if (!fromF0 && !fromBase)
     throw Error(ErrorCode::InvalidArgument,
@@ -152,6 +152,7 @@ void applyGlossyPassForm(Image& reflection, const GBuffer& g, const Camera& came
   const glm::dmat4 inverseProjection = glm::inverse(camera.projection);
   const glm::dmat4 cameraToWorld = glm::inverse(camera.view);
   const MixedPixels mixed(g, camera, inverseProjection);
+  std::size_t metals = 0;
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       const std::size_t i = std::size_t(y) * w + x;
@@ -169,6 +170,7 @@ void applyGlossyPassForm(Image& reflection, const GBuffer& g, const Camera& came
       if (!fromF0 && pureMetalColor(g, i, cosO, metal)) {
         for (int c = 0; c < 3; ++c) reflection.data[i * reflection.channels + c] = metal[c];
         if (reflection.channels > 3) reflection.data[i * reflection.channels + 3] = 1.0f;  // all of it known
+        ++metals;
         continue;
       }
       const SpecularAlbedo e = specularAlbedo(roughness, cosO);
@@ -191,6 +193,7 @@ void applyGlossyPassForm(Image& reflection, const GBuffer& g, const Camera& came
         v = float(v * (share * eSource(f0[c]) + (1 - share) * e(f0[c])));
       }
     }
+  return metals;
 }
 
 }  // namespace ssrcl

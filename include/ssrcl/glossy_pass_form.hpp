@@ -1,4 +1,5 @@
 #pragma once
+#include <cstddef>
 #include <optional>
 #include <string>
 
@@ -35,8 +36,9 @@ DefaultOutputForm defaultOutputForm(const GBufferSource& source);
 // pipeline's conventions (planar depth, world normals) and either an F0 pass or base colour and
 // metallic passes; `camera` is that of its pixels; constantRoughness, when set (as
 // TraceSettings::constantRoughness), replaces the roughness pass. Throws Error(InvalidArgument) when the gbuffer has
-// neither or constantRoughness is outside [0, 1]. Output finite for any input.
-void applyGlossyPassForm(Image& reflection, const GBuffer& gbuffer, const Camera& camera,
-                         std::optional<float> constantRoughness);
+// neither or constantRoughness is outside [0, 1]. Output finite for any input. Returns how many
+// pixels took their colour.
+std::size_t applyGlossyPassForm(Image& reflection, const GBuffer& gbuffer, const Camera& camera,
+                                std::optional<float> constantRoughness);
 
 }  // namespace ssrcl
