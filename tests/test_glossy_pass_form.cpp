@@ -455,7 +455,8 @@ TEST(GlossyPassForm, MixedPixelTakesItsSurfacesEByShare) {
 // lobe, all of their render's light is their glossy reflection. A partly metal pixel (0.99), one
 // whose colour is not finite, one whose glossy passes leave light that is not glossy (a metal
 // mixed with a diffuse shader, or emissive), and every pixel of an F0 pass (metal or not, it does
-// not say) keep the pass times E: against the quadrature of the lobe, as above.
+// not say) keep the pass times E: against the quadrature of the lobe, as above. The quantity is
+// Glossy Direct + Indirect: a tinted Glossy Color (a Glossy BSDF's colour) divides the colour.
 TEST(GlossyPassForm, PureMetalPixelsTakeTheirColour) {
   const int w = 4, h = 4;
   const ssrcl::Camera camera = ssrcl::test::perspectiveCamera(w, h);  // looks down at the floor y = 0
@@ -473,12 +474,15 @@ TEST(GlossyPassForm, PureMetalPixelsTakeTheirColour) {
   g.metallic = ssrcl::Image(w, h, 1);
   std::fill(g.metallic.data.begin(), g.metallic.data.end(), 1.0f);
   const auto cosO = [&](size_t i) { return ground.toEye[i].y; };
-  const size_t metal = 5, partly = 6, notFinite = 9, mixed = 10, withPasses = 11;
+  const size_t metal = 5, partly = 6, notFinite = 9, mixed = 10, withPasses = 11, tinted = 12;
   g.metallic.data[partly] = 0.99f;
   g.color.data[3 * notFinite + 1] = std::numeric_limits<float>::infinity();
   g.base = ssrcl::Image(w, h, 3);               // the glossy passes' remainder: nil (their rounding) but at `mixed`
   g.base.data[3 * withPasses] = 0.008f * 9.0f;  // 0.8% of the colour's sum (2 + 3 + 4)
   g.base.data[3 * mixed] = 0.5f;
+  g.specular = ssrcl::Image(w, h, 3);  // Glossy Color: white (a Principled BSDF) but at `tinted`
+  std::fill(g.specular.data.begin(), g.specular.data.end(), 1.0f);
+  g.specular.data[3 * tinted] = 0.5f, g.specular.data[3 * tinted + 2] = 0.25f;
   ssrcl::Image pass(w, h, 4);
   std::fill(pass.data.begin(), pass.data.end(), 0.5f);
   ssrcl::Image fromF0 = pass;
@@ -492,6 +496,9 @@ TEST(GlossyPassForm, PureMetalPixelsTakeTheirColour) {
   EXPECT_NEAR(pass.data[4 * notFinite + 1], 0.5 * albedoTruth(cosO(notFinite), roughness, base), 5e-3);
   EXPECT_NEAR(pass.data[4 * mixed], 0.5 * albedoTruth(cosO(mixed), roughness, base), 5e-3);
   EXPECT_EQ(pass.data[4 * withPasses + 2], 4.0f);
+  EXPECT_EQ(pass.data[4 * tinted], 4.0f);
+  EXPECT_EQ(pass.data[4 * tinted + 1], 3.0f);
+  EXPECT_EQ(pass.data[4 * tinted + 2], 16.0f);
   for (float v : pass.data) ASSERT_TRUE(std::isfinite(v));
 
   g.f0 = g.baseColor;  // an F0 pass is read first

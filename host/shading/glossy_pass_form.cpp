@@ -123,8 +123,13 @@ bool pureMetalColor(const GBuffer& g, std::size_t i, double cosO, float rgb[3]) 
     for (int c = 0; c < 3; ++c) notGlossy += std::abs(g.base.data[3 * i + c]), all += g.color.data[3 * i + c];
     if (!(notGlossy <= kNotGlossyShare * all)) return false;
   }
+  // The form's quantity is Glossy Direct + Indirect: the colour over Glossy Color, which is 1 on a
+  // Principled BSDF and a Glossy BSDF's own colour (the add-on marks those metallic 1 as well).
+  const bool glossyColour = g.specular.data.size() == g.color.data.size();
   for (int c = 0; c < 3; ++c) {
-    rgb[c] = g.color.data[3 * i + c];
+    const float weight = glossyColour ? g.specular.data[3 * i + c] : 1.0f;
+    if (!(weight > 1e-4f)) return false;  // a lobe that reflects nothing there: the pass has no value to give
+    rgb[c] = g.color.data[3 * i + c] / weight;
     if (!std::isfinite(rgb[c])) return false;
     rgb[c] = std::clamp(rgb[c], 0.0f, 1e20f);  // the pass's radiance rule (kernels/common.cl sanitize_radiance)
   }

@@ -30,9 +30,10 @@ DefaultOutputForm defaultOutputForm(const GBufferSource& source);
 // Turns a reflection pass (rgb premultiplied by A, as the pipeline writes it) into the glossy-pass
 // form: rgb times E(view, roughness, F0) per pixel and channel, A unchanged. A pixel of pure metal
 // (metallic pass >= 0.999, with base colour and metallic passes; not with an F0 pass, which does
-// not tell metal from dielectric) takes its colour as it is, A 1: its render holds no light but its
-// glossy reflection, so its colour is that pass exactly; not where gbuffer.base (from the glossy
-// passes) holds over 1% of the colour (a shader mixed in, emission). `gbuffer` holds the
+// not tell metal from dielectric) takes its colour (over gbuffer.specular, Glossy Color, where
+// given), A 1: its render holds no light but its glossy reflection, so that is the pass exactly;
+// not where gbuffer.base (from the glossy passes) holds over 1% of the colour (a shader mixed in,
+// emission). `gbuffer` holds the
 // pipeline's conventions (planar depth, world normals) and either an F0 pass or base colour and
 // metallic passes; `camera` is that of its pixels; constantRoughness, when set (as
 // TraceSettings::constantRoughness), replaces the roughness pass. Throws Error(InvalidArgument) when the gbuffer has
