@@ -29,7 +29,7 @@ struct Traced {
   std::string output;  // the CLI's stdout and stderr
 };
 
-// `ssrcl trace <scene>.exr <options>`, its RGB against Cycles unscaled; `pass` gets what it wrote (RGBA).
+// `ssrcl trace <scene>.exr <options>`, its RGB against Cycles unscaled; `written` gets what it wrote (RGBA).
 Traced trace(const std::string& scene, const std::string& options, ssrcl::Image* written = nullptr) {
   ssrcl::test::TempDir dir("ssrcl-real-corpus");
   const std::string out = dir.file("reflection.exr");
