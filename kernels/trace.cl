@@ -21,9 +21,14 @@
 // range pyramid, back_pyramid.cl); with views such a skip records the ray's passage behind them
 // (SSRCL_RAY_BEHIND), in the frame and in the views alike.
 #ifndef SSRCL_TRACE_PACKETS
-#define SSRCL_TRACE_PACKETS 3  // packets of eight rays a round (trace_hiz_packets)
+#define SSRCL_TRACE_PACKETS 1  // packets of eight lanes stepped in turn (trace_hiz_packets)
 #endif
-#define SSRCL_TRACE_ROUND (8 * SSRCL_TRACE_PACKETS)
+#ifndef SSRCL_TRACE_ROUND
+#define SSRCL_TRACE_ROUND 64  // rays made, traced and shaded together (a work-item's, at medium)
+#endif
+#ifndef SSRCL_REFILL_AT
+#define SSRCL_REFILL_AT 2  // a packet's idle lanes take the round's next rays once this many are idle
+#endif
 #ifndef SSRCL_TRACE_SCALAR
 #define SSRCL_TRACE_SCALAR 0  // 1: Hi-Z a ray at a time (trace_hiz), the form the packets' lanes reproduce (tests)
 #endif
@@ -292,12 +297,6 @@ typedef struct {
   float8 s0x, s0y, dsx, dsy, q0x, q0y, q0z, q0w, dqx, dqy, dqz, dqw;
 } ScreenRays8;
 
-// The k-th of eight values `stride` apart (a field of eight private structs).
-inline float8 lanes_of(const float* a, int stride) {
-  return (float8)(a[0], a[stride], a[2 * stride], a[3 * stride], a[4 * stride], a[5 * stride], a[6 * stride],
-                  a[7 * stride]);
-}
-
 // Eight float2 records as two float8s, a gather each (scattered_record_lanes).
 inline float8 gather8_xy(__global const float2* a, int8 i, float8* y) {
   __global const float* f = (__global const float*)a;
@@ -374,47 +373,127 @@ typedef struct {
   int8 px, py, cx, cy, level, deeper, active, iterations, fetches, hit_x, hit_y, seen, behind, thick, hidden, entered;
   int8 past, past_x, past_y;  // SSRCL_BACK_KNOWN: TraceScene's past, per lane
   float8 past_t;
+  int8 slot;  // the round's ray in each lane, -1 for none
 } Packet8;
 
-// Starts the rays of the lanes marked in live[] (the others' lanes stay idle).
-inline void packet_begin(Packet8* p, const TraceScene* sc, const ScreenRay* rays, const float3* dirs, const int* live) {
-  // ScreenRay is 12 floats (s0, ds, q0, dq; the float4s 16-byte aligned), a float3 4.
-  const float* rf = (const float*)rays;
-  const int rs = sizeof(ScreenRay) / sizeof(float), ds = sizeof(float3) / sizeof(float);
-  const ScreenRays8 r = {lanes_of(rf, rs),     lanes_of(rf + 1, rs), lanes_of(rf + 2, rs),  lanes_of(rf + 3, rs),
-                         lanes_of(rf + 4, rs), lanes_of(rf + 5, rs), lanes_of(rf + 6, rs),  lanes_of(rf + 7, rs),
-                         lanes_of(rf + 8, rs), lanes_of(rf + 9, rs), lanes_of(rf + 10, rs), lanes_of(rf + 11, rs)};
-  p->r = r;
-  const float* df = (const float*)dirs;
-  p->dx = lanes_of(df, ds);
-  p->dy = lanes_of(df + 1, ds);
-  p->dz = lanes_of(df + 2, ds);
-  int lane_iterations[8], lane_seen[8];
-  for (int k = 0; k < 8; ++k) {
-    lane_iterations[k] = sc[k].iterations;
-    lane_seen[k] = sc[k].seen;
-  }
-  p->iterations = vload8(0, lane_iterations);
-  p->fetches = 0;
-  p->seen = vload8(0, lane_seen) != 0;
-  p->behind = p->thick = p->hidden = p->entered = 0;
-  p->past = p->past_x = p->past_y = 0;
-  p->past_t = -1.0f;
-  p->ix = select(1.0f / r.dsx, (float8)(1e30f), fabs(r.dsx) < 1e-12f);
-  p->iy = select(1.0f / r.dsy, (float8)(1e30f), fabs(r.dsy) < 1e-12f);
-  p->px = select((int8)(0), (int8)(1), p->ix > 0.0f);
-  p->py = select((int8)(0), (int8)(1), p->iy > 0.0f);
-  p->deeper = r.q0z * r.dqw - r.dqz * r.q0w > 0.0f;
+// The lanes of `m` start the rays packet_fill put in them: where each leaves its pixel, and its
+// records cleared.
+inline void packet_derive(Packet8* p, int8 m) {
+  const ScreenRays8 r = p->r;
+  const float8 ix = select(1.0f / r.dsx, (float8)(1e30f), fabs(r.dsx) < 1e-12f);
+  const float8 iy = select(1.0f / r.dsy, (float8)(1e30f), fabs(r.dsy) < 1e-12f);
+  const int8 px = select((int8)(0), (int8)(1), ix > 0.0f), py = select((int8)(0), (int8)(1), iy > 0.0f);
   const int8 x = convert_int8(floor(r.s0x)), y = convert_int8(floor(r.s0y));
-  const float8 tx = (convert_float8(x + p->px) - r.s0x) * p->ix, ty = (convert_float8(y + p->py) - r.s0y) * p->iy;
+  const float8 tx = (convert_float8(x + px) - r.s0x) * ix, ty = (convert_float8(y + py) - r.s0y) * iy;
   const int8 step_x = tx <= ty;
-  p->cx = select(x, x + 2 * p->px - 1, step_x);
-  p->cy = select(y + 2 * p->py - 1, y, step_x);
-  p->t = fmin(tx, ty);
-  p->d_t = -(r.q0z + p->t * r.dqz) / (r.q0w + p->t * r.dqw);
-  p->level = p->hit_x = p->hit_y = 0;
-  p->t_hit = -1.0f;
-  p->active = vload8(0, live) != 0;
+  const float8 t = fmin(tx, ty);
+  p->ix = select(p->ix, ix, m);
+  p->iy = select(p->iy, iy, m);
+  p->px = select(p->px, px, m);
+  p->py = select(p->py, py, m);
+  p->deeper = select(p->deeper, r.q0z * r.dqw - r.dqz * r.q0w > 0.0f, m);
+  p->cx = select(p->cx, select(x, x + 2 * px - 1, step_x), m);
+  p->cy = select(p->cy, select(y + 2 * py - 1, y, step_x), m);
+  p->t = select(p->t, t, m);
+  p->d_t = select(p->d_t, -(r.q0z + t * r.dqz) / (r.q0w + t * r.dqw), m);
+  p->fetches = select(p->fetches, 0, m);
+  p->behind = select(p->behind, 0, m);
+  p->thick = select(p->thick, 0, m);
+  p->hidden = select(p->hidden, 0, m);
+  p->entered = select(p->entered, 0, m);
+  p->past = select(p->past, 0, m);
+  p->past_x = select(p->past_x, 0, m);
+  p->past_y = select(p->past_y, 0, m);
+  p->past_t = select(p->past_t, -1.0f, m);
+  p->level = select(p->level, 0, m);
+  p->hit_x = select(p->hit_x, 0, m);
+  p->hit_y = select(p->hit_y, 0, m);
+  p->t_hit = select(p->t_hit, -1.0f, m);
+  p->active |= m;
+}
+
+// The results of the lanes in `m`, each to its round slot: t_hit[i] the hit's t or -1,
+// hit_cell[i] the pixel hit, and sc[i] counts the ray's work and its views flags.
+inline void packet_end(const Packet8* p, TraceScene* sc, int8 m, float* t_hit_out, int2* hit_cell) {
+  float t_lane[8], past_t[8];
+  int lanes[8], slot[8], x[8], y[8], iterations[8], fetches[8], seen[8], behind[8], thick[8], hidden[8],
+      entered[8], past[8], past_x[8], past_y[8];
+  vstore8(m, 0, lanes);
+  vstore8(p->slot, 0, slot);
+  vstore8(p->t_hit, 0, t_lane);
+  vstore8(p->hit_x, 0, x);
+  vstore8(p->hit_y, 0, y);
+  vstore8(p->iterations, 0, iterations);
+  vstore8(p->fetches, 0, fetches);
+  vstore8(p->entered, 0, entered);
+#if SSRCL_BACK_KNOWN
+  vstore8(p->past, 0, past);
+  vstore8(p->past_x, 0, past_x);
+  vstore8(p->past_y, 0, past_y);
+  vstore8(p->past_t, 0, past_t);
+#endif
+#if SSRCL_VIEWS
+  vstore8(p->seen, 0, seen);
+  vstore8(p->behind, 0, behind);
+  vstore8(p->thick, 0, thick);
+  vstore8(p->hidden, 0, hidden);
+#endif
+  for (int j = 0; j < 8; ++j) {
+    if (!lanes[j]) continue;
+    const int i = slot[j];
+    t_hit_out[i] = t_lane[j];
+    hit_cell[i] = (int2)(x[j], y[j]);
+    sc[i].iterations = iterations[j];
+    sc[i].entered = entered[j] != 0;
+    sc[i].fetches += fetches[j];
+#if SSRCL_BACK_KNOWN
+    sc[i].past = past[j] != 0;
+    sc[i].past_t = past_t[j];
+    sc[i].past_cell = (int2)(past_x[j], past_y[j]);
+#endif
+#if SSRCL_VIEWS
+    sc[i].seen = seen[j] != 0;
+    sc[i].behind |= behind[j] != 0;
+    sc[i].thick |= thick[j] != 0;
+    sc[i].hidden |= hidden[j] != 0;
+#endif
+  }
+}
+
+// The packet's idle lanes: the results of the rays they finished written, then the round's next
+// live rays from `next` on started in them, a lane at a time by selects. Returns the next ray not
+// started.
+inline int packet_fill(Packet8* p, TraceScene* sc, const ScreenRay* rays, const float3* dirs, const int* live,
+                       int next, float* t_hit_out, int2* hit_cell) {
+  const int8 idle = p->active == 0;
+  packet_end(p, sc, idle & (p->slot >= 0), t_hit_out, hit_cell);
+  p->slot = select(p->slot, -1, idle);
+  int idle_lane[8];
+  vstore8(idle, 0, idle_lane);
+  int8 started = 0;
+  for (int j = 0; j < 8 && next < SSRCL_TRACE_ROUND; ++j) {
+    if (!idle_lane[j]) continue;
+    while (next < SSRCL_TRACE_ROUND && !live[next]) ++next;
+    if (next == SSRCL_TRACE_ROUND) break;
+    const int i = next++;
+    const ScreenRay r = rays[i];
+    const float3 d = dirs[i];
+    const int8 at = (int8)(0, 1, 2, 3, 4, 5, 6, 7) == j;
+    p->r.s0x = select(p->r.s0x, (float8)(r.s0.x), at), p->r.s0y = select(p->r.s0y, (float8)(r.s0.y), at);
+    p->r.dsx = select(p->r.dsx, (float8)(r.ds.x), at), p->r.dsy = select(p->r.dsy, (float8)(r.ds.y), at);
+    p->r.q0x = select(p->r.q0x, (float8)(r.q0.x), at), p->r.q0y = select(p->r.q0y, (float8)(r.q0.y), at);
+    p->r.q0z = select(p->r.q0z, (float8)(r.q0.z), at), p->r.q0w = select(p->r.q0w, (float8)(r.q0.w), at);
+    p->r.dqx = select(p->r.dqx, (float8)(r.dq.x), at), p->r.dqy = select(p->r.dqy, (float8)(r.dq.y), at);
+    p->r.dqz = select(p->r.dqz, (float8)(r.dq.z), at), p->r.dqw = select(p->r.dqw, (float8)(r.dq.w), at);
+    p->dx = select(p->dx, (float8)(d.x), at), p->dy = select(p->dy, (float8)(d.y), at);
+    p->dz = select(p->dz, (float8)(d.z), at);
+    p->iterations = select(p->iterations, (int8)(sc[i].iterations), at);
+    p->seen = select(p->seen, (int8)(sc[i].seen ? -1 : 0), at);
+    p->slot = select(p->slot, (int8)(i), at);
+    started |= at;
+  }
+  packet_derive(p, started);
+  return next;
 }
 
 // One step of the packet's live lanes; false once none is left.
@@ -502,64 +581,33 @@ inline bool packet_step(Packet8* p, const TraceScene* sc) {
   return true;
 }
 
-// The packet's results: t_hit[k] the hit's t or -1, hit_cell[k] the pixel hit, and sc[k] counts
-// the lane's work and its views flags.
-inline void packet_end(const Packet8* p, TraceScene* sc, const int* live, float* t_hit_out, int2* hit_cell) {
-  float t_lane[8];
-  int lane_x[8], lane_y[8], lane_iterations[8], lane_fetches[8], lane_seen[8], lane_behind[8], lane_thick[8],
-      lane_hidden[8], lane_entered[8];
-  vstore8(p->t_hit, 0, t_lane);
-  vstore8(p->hit_x, 0, lane_x);
-  vstore8(p->hit_y, 0, lane_y);
-  vstore8(p->iterations, 0, lane_iterations);
-  vstore8(p->fetches, 0, lane_fetches);
-  vstore8(p->seen, 0, lane_seen);
-  vstore8(p->behind, 0, lane_behind);
-  vstore8(p->thick, 0, lane_thick);
-  vstore8(p->hidden, 0, lane_hidden);
-  vstore8(p->entered, 0, lane_entered);
-#if SSRCL_BACK_KNOWN
-  int lane_past[8], lane_past_x[8], lane_past_y[8];
-  float lane_past_t[8];
-  vstore8(p->past, 0, lane_past);
-  vstore8(p->past_x, 0, lane_past_x);
-  vstore8(p->past_y, 0, lane_past_y);
-  vstore8(p->past_t, 0, lane_past_t);
-#endif
-  for (int k = 0; k < 8; ++k) {
-    if (!live[k]) continue;
-    t_hit_out[k] = t_lane[k];
-    hit_cell[k] = (int2)(lane_x[k], lane_y[k]);
-    sc[k].iterations = lane_iterations[k];
-    sc[k].entered = lane_entered[k] != 0;
-    sc[k].fetches += lane_fetches[k];
-#if SSRCL_BACK_KNOWN
-    sc[k].past = lane_past[k] != 0;
-    sc[k].past_t = lane_past_t[k];
-    sc[k].past_cell = (int2)(lane_past_x[k], lane_past_y[k]);
-#endif
-#if SSRCL_VIEWS
-    sc[k].seen = lane_seen[k] != 0;
-    sc[k].behind |= lane_behind[k] != 0;
-    sc[k].thick |= lane_thick[k] != 0;
-    sc[k].hidden |= lane_hidden[k] != 0;
-#endif
-  }
-}
-
-// Traces SSRCL_TRACE_PACKETS packets of eight rays, stepped in turn: one packet's step computes
-// while another's texel reads are under way (each step waits on the last one's reads).
+// Traces the round's live rays in SSRCL_TRACE_PACKETS packets of eight lanes, stepped in turn. A
+// lane whose ray is done idles until SSRCL_REFILL_AT of its packet's lanes are, then they take the
+// round's next rays: with a packet's eight lanes held until all were done, half the lanes stepped
+// idle (docs/BENCHMARKS.md, "Lanes that take the next ray").
 inline void trace_hiz_packets(TraceScene* sc, const ScreenRay* rays, const float3* dirs, const int* live,
                               float* t_hit_out, int2* hit_cell) {
   Packet8 packet[SSRCL_TRACE_PACKETS];
-  for (int k = 0; k < SSRCL_TRACE_PACKETS; ++k)
-    packet_begin(&packet[k], sc + 8 * k, rays + 8 * k, dirs + 8 * k, live + 8 * k);
-  for (bool stepped = true; stepped;) {
+  int next = 0;
+  for (int k = 0; k < SSRCL_TRACE_PACKETS; ++k) {
+    const Packet8 none = {0};  // idle lanes step too: their cells and levels must be in range
+    packet[k] = none;
+    packet[k].slot = -1;
+    next = packet_fill(&packet[k], sc, rays, dirs, live, next, t_hit_out, hit_cell);
+  }
+  // A step can end a packet's last rays (their steps or their screen run out) while rays remain.
+  for (bool stepped = true; stepped || next < SSRCL_TRACE_ROUND;) {
     stepped = false;
-    for (int k = 0; k < SSRCL_TRACE_PACKETS; ++k) stepped |= packet_step(&packet[k], sc);
+    for (int k = 0; k < SSRCL_TRACE_PACKETS; ++k) {
+      const int8 idle = packet[k].active == 0;
+      if (next < SSRCL_TRACE_ROUND && -(idle.s0 + idle.s1 + idle.s2 + idle.s3 + idle.s4 + idle.s5 + idle.s6 + idle.s7) >=
+                                          SSRCL_REFILL_AT)
+        next = packet_fill(&packet[k], sc, rays, dirs, live, next, t_hit_out, hit_cell);
+      stepped |= packet_step(&packet[k], sc);
+    }
   }
   for (int k = 0; k < SSRCL_TRACE_PACKETS; ++k)
-    packet_end(&packet[k], sc + 8 * k, live + 8 * k, t_hit_out + 8 * k, hit_cell + 8 * k);
+    packet_end(&packet[k], sc, packet[k].slot >= 0, t_hit_out, hit_cell);
 }
 
 // Fixed steps of `step_pixels` along the major screen axis, each tested with hit_pixel against
@@ -740,9 +788,9 @@ inline float4 bounce_found(__global const float4* color_pyramid, int2 size, floa
                   edge_confidence(ray_screen(ray2, t2), size, edge_fade));
 }
 
-// A round of rays as the tracers take them: each lane's screen ray and direction, whether it has
-// one (live: lanes without one are traced too, their results unused), and what it finds (t, or
-// negative on a miss, and the pixel).
+// A round of rays as the tracers take them: each ray's screen ray and direction, whether it has
+// one (live: those without one are not traced), and what it finds (t, or negative on a miss, and
+// the pixel).
 typedef struct {
   ScreenRay ray[SSRCL_TRACE_ROUND];
   float3 dir[SSRCL_TRACE_ROUND];
