@@ -374,7 +374,21 @@ typedef struct {
   int8 past, past_x, past_y;  // SSRCL_BACK_KNOWN: TraceScene's past, per lane
   float8 past_t;
   int8 slot;  // the round's ray in each lane, -1 for none
+  int8 offsets_low, offsets_high;  // the levels' offsets 0-7 and 8-15 (level_offsets)
 } Packet8;
+
+// Where each lane's level starts in the pyramids. On AVX2, from the levels' offsets held in two
+// vectors by two lane permutes (vpermd): the read of `levels` that stands in for them elsewhere is
+// eight scalar loads there (LLVM forms no gathers for it), at the head of each step's chain of
+// dependent reads. SSRCL_PORTABLE builds the form other devices take (tests/CMakeLists.txt).
+inline int8 level_offsets(const Packet8* p, const TraceScene* sc) {
+#if defined(__AVX2__) && !defined(SSRCL_PORTABLE)
+  if (sc->level_count <= 16)
+    return select(__builtin_ia32_permvarsi256(p->offsets_low, p->level),
+                  __builtin_ia32_permvarsi256(p->offsets_high, p->level), p->level > 7);
+#endif
+  return as_int8(gather8((__global const float*)sc->levels, p->level * (int)(sizeof(HzbLevel) / sizeof(int))));
+}
 
 // The lanes of `m` start the rays packet_fill put in them: where each leaves its pixel, and its
 // records cleared.
@@ -510,9 +524,7 @@ inline bool packet_step(Packet8* p, const TraceScene* sc) {
   // its offset (the records' first field) by one gather.
   const int8 width = ((int8)(sc->size.x) + ((int8)(1) << p->level) - 1) >> p->level;
   const int8 height = ((int8)(sc->size.y) + ((int8)(1) << p->level) - 1) >> p->level;
-  const int record = sizeof(HzbLevel) / sizeof(int);
-  const int8 texel = as_int8(gather8((__global const float*)sc->levels, p->level * record)) +
-                     clamp(p->cy, 0, height - 1) * width + clamp(p->cx, 0, width - 1);
+  const int8 texel = level_offsets(p, sc) + clamp(p->cy, 0, height - 1) * width + clamp(p->cx, 0, width - 1);
   float8 hi;
   const float8 lo = gather8_xy(sc->range, texel, &hi);
   if (SSRCL_COUNT_WORK) p->fetches -= p->active;  // counted only where they are read
@@ -595,6 +607,10 @@ inline void trace_hiz_packets(TraceScene* sc, const ScreenRay* rays, const float
   for (int k = 0; k < SSRCL_TRACE_PACKETS; ++k) {
     const Packet8 none = {0};  // idle lanes step too: their cells and levels must be in range
     packet[k] = none;
+    int offsets[16];
+    for (int l = 0; l < 16; ++l) offsets[l] = l < sc->level_count ? sc->levels[l].offset : 0;
+    packet[k].offsets_low = vload8(0, offsets);
+    packet[k].offsets_high = vload8(1, offsets);
     packet[k].slot = -1;
     next = packet_fill(&packet[k], sc, rays, dirs, live, next, t_hit_out, hit_cell);
   }
