@@ -173,12 +173,27 @@ inline float8 dot_lanes(float8 ax, float8 ay, float8 az, float8 bx, float8 by, f
   return (x + y) + z;
 }
 
-// any() of a lane mask (each lane 0 or -1) as one OR tree and one test: PoCL's any(int8) tests
-// the lanes' sign bits a pair at a time, a branch each.
+// any() of a lane mask (each lane 0 or -1): PoCL's any(int8) tests the lanes' sign bits a pair at
+// a time, a branch each. On AVX CPUs one vptest; elsewhere one OR tree and one test (the form
+// SSRCL_PORTABLE builds, for tests).
 inline bool any_lane(int8 mask) {
+#if defined(__AVX__) && !defined(SSRCL_PORTABLE)
+  return !__builtin_ia32_ptestz256(as_long4(mask), as_long4(mask));
+#else
   int4 a = mask.lo | mask.hi;
   int2 b = a.lo | a.hi;
   return (b.x | b.y) != 0;
+#endif
+}
+
+// How many lanes of a mask (each lane 0 or -1) are set: on AVX CPUs by vmovmskps and popcnt, where
+// the sum took eight extractions (the packet loop asks every step).
+inline int count_lanes(int8 mask) {
+#if defined(__AVX__) && !defined(SSRCL_PORTABLE)
+  return popcount(__builtin_ia32_movmskps256(as_float8(mask)));
+#else
+  return -(mask.s0 + mask.s1 + mask.s2 + mask.s3 + mask.s4 + mask.s5 + mask.s6 + mask.s7);
+#endif
 }
 
 inline int max_lane(int8 v) {

@@ -619,8 +619,7 @@ inline void trace_hiz_packets(TraceScene* sc, const ScreenRay* rays, const float
     stepped = false;
     for (int k = 0; k < SSRCL_TRACE_PACKETS; ++k) {
       const int8 idle = packet[k].active == 0;
-      if (next < SSRCL_TRACE_ROUND && -(idle.s0 + idle.s1 + idle.s2 + idle.s3 + idle.s4 + idle.s5 + idle.s6 + idle.s7) >=
-                                          SSRCL_REFILL_AT)
+      if (next < SSRCL_TRACE_ROUND && count_lanes(idle) >= SSRCL_REFILL_AT)
         next = packet_fill(&packet[k], sc, rays, dirs, live, next, t_hit_out, hit_cell);
       stepped |= packet_step(&packet[k], sc);
     }
