@@ -32,6 +32,13 @@
 #ifndef SSRCL_TRACE_SCALAR
 #define SSRCL_TRACE_SCALAR 0  // 1: Hi-Z a ray at a time (trace_hiz), the form the packets' lanes reproduce (tests)
 #endif
+// 1 on AVX2 CPUs: packets hold the levels' offsets for lane permutes (level_offsets). SSRCL_PORTABLE
+// builds what other devices do, for tests/CMakeLists.txt's bit-for-bit check.
+#if defined(__AVX2__) && !defined(SSRCL_PORTABLE)
+#define SSRCL_LEVEL_PERMUTES 1
+#else
+#define SSRCL_LEVEL_PERMUTES 0
+#endif
 #ifndef SSRCL_MATERIAL_HITS
 #define SSRCL_MATERIAL_HITS 0  // 1: hits on glossy pixels are shaded with their F0 (f0, albedo)
 #endif
@@ -374,15 +381,17 @@ typedef struct {
   int8 past, past_x, past_y;  // SSRCL_BACK_KNOWN: TraceScene's past, per lane
   float8 past_t;
   int8 slot;  // the round's ray in each lane, -1 for none
+#if SSRCL_LEVEL_PERMUTES
   int8 offsets_low, offsets_high;  // the levels' offsets 0-7 and 8-15 (level_offsets)
+#endif
 } Packet8;
 
 // Where each lane's level starts in the pyramids. On AVX2, from the levels' offsets held in two
 // vectors by two lane permutes (vpermd): the read of `levels` that stands in for them elsewhere is
 // eight scalar loads there (LLVM forms no gathers for it), at the head of each step's chain of
-// dependent reads. SSRCL_PORTABLE builds the form other devices take (tests/CMakeLists.txt).
+// dependent reads. Other devices read `levels` (and keep their registers).
 inline int8 level_offsets(const Packet8* p, const TraceScene* sc) {
-#if defined(__AVX2__) && !defined(SSRCL_PORTABLE)
+#if SSRCL_LEVEL_PERMUTES
   if (sc->level_count <= 16)
     return select(__builtin_ia32_permvarsi256(p->offsets_low, p->level),
                   __builtin_ia32_permvarsi256(p->offsets_high, p->level), p->level > 7);
@@ -521,7 +530,7 @@ inline bool packet_step(Packet8* p, const TraceScene* sc) {
   const float8 t_exit = fmin(tx, ty), t_end = fmin(t_exit, 1.0f);
   const float8 d_end = -(p->r.q0z + t_end * p->r.dqz) / (p->r.q0w + t_end * p->r.dqw);
   // cell_range: a level is ceil(fine / 2) of the one below (stage_support.cpp), its size by shifts,
-  // its offset (the records' first field) by one gather.
+  // its offset by level_offsets.
   const int8 width = ((int8)(sc->size.x) + ((int8)(1) << p->level) - 1) >> p->level;
   const int8 height = ((int8)(sc->size.y) + ((int8)(1) << p->level) - 1) >> p->level;
   const int8 texel = level_offsets(p, sc) + clamp(p->cy, 0, height - 1) * width + clamp(p->cx, 0, width - 1);
@@ -607,10 +616,12 @@ inline void trace_hiz_packets(TraceScene* sc, const ScreenRay* rays, const float
   for (int k = 0; k < SSRCL_TRACE_PACKETS; ++k) {
     const Packet8 none = {0};  // idle lanes step too: their cells and levels must be in range
     packet[k] = none;
+#if SSRCL_LEVEL_PERMUTES
     int offsets[16];
     for (int l = 0; l < 16; ++l) offsets[l] = l < sc->level_count ? sc->levels[l].offset : 0;
     packet[k].offsets_low = vload8(0, offsets);
     packet[k].offsets_high = vload8(1, offsets);
+#endif
     packet[k].slot = -1;
     next = packet_fill(&packet[k], sc, rays, dirs, live, next, t_hit_out, hit_cell);
   }
