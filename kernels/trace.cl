@@ -494,7 +494,7 @@ inline int packet_fill(Packet8* p, TraceScene* sc, const ScreenRay* rays, const 
   int idle_lane[8];
   vstore8(idle, 0, idle_lane);
   int8 started = 0;
-  for (int j = 0; j < 8 && next < SSRCL_TRACE_ROUND; ++j) {
+  for (int j = 0; j < 8; ++j) {
     if (!idle_lane[j]) continue;
     while (next < SSRCL_TRACE_ROUND && !live[next]) ++next;
     if (next == SSRCL_TRACE_ROUND) break;
