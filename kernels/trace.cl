@@ -803,7 +803,7 @@ inline bool bounce_ray(float16 proj, int2 size, float near_plane, float far_plan
                        float3 dir, float4 nq, float alpha_q, int q, int sample, uint seed, ScreenRay* ray2,
                        float3* dir2) {
   float pdf2;
-  *dir2 = sample_reflection(-dir, nq.xyz, nq.w <= mirror_roughness, alpha_q, sample_2d(q, sample, seed + 1u), &pdf2);
+  *dir2 = sample_reflection(-dir, nq.xyz, nq.w <= mirror_roughness, alpha_q, sample_2d(q % size.x, q / size.x, sample, seed + 1u), &pdf2);
   return dot(*dir2, *dir2) > 0.0f && ray_from(proj, size, near_plane, far_plane, hit, *dir2, ray2);
 }
 
@@ -941,7 +941,7 @@ __kernel void trace_rays(TraceParams params, __global const float2* range, __glo
       const int k = drawn_count++;
       m_k[k] = nr.w <= mirror_roughness ? -1 : 0;
       a_k[k] = fmax(roughness_to_alpha(nr.w, SSRCL_ROUGHNESS_MAPPING), 1e-4f);
-      float2 u = sample_2d(i, sample, seed);
+      float2 u = sample_2d(i % size.x, i / size.x, sample, seed);
       p_x[k] = p.x, p_y[k] = p.y, p_z[k] = p.z;
       o_x[k] = o.x, o_y[k] = o.y, o_z[k] = o.z, n_x[k] = n.x, n_y[k] = n.y, n_z[k] = n.z, u_x[k] = u.x, u_y[k] = u.y;
       PixelRay made = {gid, sample, record, p, 0.0f, a_k[k], m_k[k] != 0, 1};

@@ -667,19 +667,30 @@ TEST(GlossySsrCrease, RaysAreNotReusedAcrossTheCrease) {
       }
     return false;
   };
-  const ssrcl::Image out = runSsr(c, ssrcl::TraceSettings{});
-  const Errors band = compare(c, out, nullptr, nullptr, nearCrease), all = compare(c, out);
-  std::cout << "creased floor, medium: " << describe(all) << "\n   within " << reach
-            << " px of the crease: " << describe(band) << "\n";
-  record("crease_band", band);
-  // Measured (PoCL): in the band bias A +0.0157, rms A 0.0470 (over the whole floor +0.0088,
-  // 0.052: the tilted halves' own residue, not understood yet; the filter's kernel, cut at the
-  // crease, leans on each half's interior: +0.0076 against its narrower radius before);
-  // reusing the other half's rays moves the band to bias +0.0004. Bounds: rms 10% above the
-  // measured value, the bias within 0.006 of it (under half the mutant's shift).
-  ASSERT_GT(band.pixels, 100u);
-  EXPECT_LT(std::abs(band.biasA - 0.0157), 0.006);
-  EXPECT_LT(band.rmsA, 0.0517);
+  // Over four seeds: one seed's band moves its bias by +-0.006 and its rms by +-0.006, as much as
+  // the mutant does.
+  double bias = 0.0, rms = 0.0;
+  constexpr int kSeeds = 4;
+  for (int seed = 0; seed < kSeeds; ++seed) {
+    ssrcl::TraceSettings s;
+    s.seed = seed;
+    const ssrcl::Image out = runSsr(c, s);
+    const Errors band = compare(c, out, nullptr, nullptr, nearCrease), all = compare(c, out);
+    std::cout << "creased floor, medium, seed " << seed << ": " << describe(all) << "\n   within " << reach
+              << " px of the crease: " << describe(band) << "\n";
+    ASSERT_GT(band.pixels, 100u);
+    bias += band.biasA / kSeeds;
+    rms += band.rmsA / kSeeds;
+  }
+  RecordProperty("crease_band_bias", std::to_string(bias));
+  RecordProperty("crease_band_rms", std::to_string(rms));
+  // Measured (PoCL), the mean of seeds 0-3: in the band bias A +0.0118, rms A 0.0526 (over the
+  // whole floor +0.0099, 0.053: the tilted halves' own residue, not understood yet; the filter's
+  // kernel, cut at the crease, leans on each half's interior); reusing the other half's rays moves
+  // the band's bias to +0.0034 (seeds 0-3: -0.016, -0.003, -0.006, -0.006 each), its rms nowhere.
+  // Bounds: the bias within 0.004 of the measured value, the rms 10% above it.
+  EXPECT_LT(std::abs(bias - 0.0118), 0.004);
+  EXPECT_LT(rms, 0.058);
 }
 
 // Same inputs and seed: bit-identical output; another seed: another output.

@@ -76,11 +76,12 @@ TEST(ShotTemporal, BlendHoldsStillAndBeatsEachFrameAlone) {
   const ShotScore a = score(dir.file("alone")), b = score(dir.file("blended"));
   std::cout << "alone: PSNR " << a.psnr << " tPSNR " << a.tpsnr << "; --temporal 2: PSNR " << b.psnr << " tPSNR "
             << b.tpsnr << "\n";
-  // Measured +0.78 dB (26.80 -> 27.58). With the hit-distance and moved tests at their sharp-lobe
-  // tolerance on this rough floor (TemporalSettings::roughnessSpread 0) the blend refuses most of
-  // its history and gains +0.60 dB (27.40): this bound fails there.
-  EXPECT_GT(b.tpsnr, a.tpsnr + 0.69);
-  EXPECT_GT(b.psnr, a.psnr - 0.1);  // measured +0.02 dB (17.70)
+  // Measured +0.69 dB (26.96 -> 27.64; +0.78 before neighbours' rays were spread over their lobes,
+  // kernels/sequence.cl, which steadied each frame alone). With the hit-distance and moved tests at
+  // their sharp-lobe tolerance on this rough floor (TemporalSettings::roughnessSpread 0) the blend
+  // refuses most of its history and gains +0.64 dB (27.59): this bound fails there.
+  EXPECT_GT(b.tpsnr, a.tpsnr + 0.66);
+  EXPECT_GT(b.psnr, a.psnr - 0.1);  // measured +0.73 dB (19.65)
 }
 
 // A blend of 2K + 1 frames averages a rare bright view hit's speckle down by their square root,
