@@ -2,10 +2,10 @@
 // (Cranley-Patterson) per pixel by the pixel's point of a lattice over the screen and per seed by
 // a hashed shift. Sample k of a pixel is well spread among that pixel's samples, and the
 // rotations of any 3x3 to 7x7 block of pixels lie evenly over the square (their nearest two at
-// 0.66-0.71 of an even grid's spacing; independent hashed rotations, as before, put some at a
-// tenth of it): the resolve reuses the rays of a pixel's neighbours, which together then cover
-// its lobe evenly. docs/BENCHMARKS.md "Rays spread over neighbours"; the lattice's generators
-// from scripts/search-sample-lattice.py.
+// 0.66-0.71 of an even grid's spacing; independent hashed rotations, as before, put them at
+// 0.14 of it on average): the resolve reuses the rays of a pixel's neighbours, which together
+// then cover its lobe evenly. docs/BENCHMARKS.md "Rays spread over neighbours"; the lattice's
+// generators from scripts/search-sample-lattice.py.
 
 inline uint hash_u32(uint x) {
   // Integer finalizer with full avalanche (the "lowbias32" constants).
