@@ -803,7 +803,8 @@ inline bool bounce_ray(float16 proj, int2 size, float near_plane, float far_plan
                        float3 dir, float4 nq, float alpha_q, int q, int sample, uint seed, ScreenRay* ray2,
                        float3* dir2) {
   float pdf2;
-  *dir2 = sample_reflection(-dir, nq.xyz, nq.w <= mirror_roughness, alpha_q, sample_2d(q % size.x, q / size.x, sample, seed + 1u), &pdf2);
+  const float2 u = sample_2d(q % size.x, q / size.x, sample, seed + 1u);
+  *dir2 = sample_reflection(-dir, nq.xyz, nq.w <= mirror_roughness, alpha_q, u, &pdf2);
   return dot(*dir2, *dir2) > 0.0f && ray_from(proj, size, near_plane, far_plane, hit, *dir2, ray2);
 }
 
