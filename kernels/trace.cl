@@ -796,14 +796,14 @@ inline float2 specular_albedo(__global const float2* table, float alpha, float c
   return mix(mix(t[0], t[1], f.y), mix(t[row], t[row + 1], f.y), f.x);
 }
 
-// One more ray from a hit on pixel q (normal and roughness nq, GGX alpha_q) at view-space `hit`,
+// One more ray from a hit on pixel `cell` (normal and roughness nq, GGX alpha_q) at view-space `hit`,
 // for the light it reflects back along the arriving ray `dir`: whether there is one to trace, and
 // its screen ray and direction.
 inline bool bounce_ray(float16 proj, int2 size, float near_plane, float far_plane, float mirror_roughness, float3 hit,
-                       float3 dir, float4 nq, float alpha_q, int q, int sample, uint seed, ScreenRay* ray2,
+                       float3 dir, float4 nq, float alpha_q, int2 cell, int sample, uint seed, ScreenRay* ray2,
                        float3* dir2) {
   float pdf2;
-  const float2 u = sample_2d(q % size.x, q / size.x, sample, seed + 1u);
+  const float2 u = sample_2d(cell.x, cell.y, sample, seed + 1u);
   *dir2 = sample_reflection(-dir, nq.xyz, nq.w <= mirror_roughness, alpha_q, u, &pdf2);
   return dot(*dir2, *dir2) > 0.0f && ray_from(proj, size, near_plane, far_plane, hit, *dir2, ray2);
 }
@@ -934,7 +934,8 @@ __kernel void trace_rays(TraceParams params, __global const float2* range, __glo
       float4 nr = normals[i];
       float3 n = nr.xyz;
       float3 v;
-      float3 p = pixel_view_point(inv_proj, size, (int2)(i % size.x, i / size.x), positions[i].w, &v);
+      const int2 pixel = (int2)(i % size.x, i / size.x);
+      float3 p = pixel_view_point(inv_proj, size, pixel, positions[i].w, &v);
       float3 o = -v;
       if (dot(o, n) <= 0.0f) continue;  // normal faces away from the viewer: no defined reflection
 
@@ -942,7 +943,7 @@ __kernel void trace_rays(TraceParams params, __global const float2* range, __glo
       const int k = drawn_count++;
       m_k[k] = nr.w <= mirror_roughness ? -1 : 0;
       a_k[k] = fmax(roughness_to_alpha(nr.w, SSRCL_ROUGHNESS_MAPPING), 1e-4f);
-      float2 u = sample_2d(i % size.x, i / size.x, sample, seed);
+      float2 u = sample_2d(pixel.x, pixel.y, sample, seed);
       p_x[k] = p.x, p_y[k] = p.y, p_z[k] = p.z;
       o_x[k] = o.x, o_y[k] = o.y, o_z[k] = o.z, n_x[k] = n.x, n_y[k] = n.y, n_z[k] = n.z, u_x[k] = u.x, u_y[k] = u.y;
       PixelRay made = {gid, sample, record, p, 0.0f, a_k[k], m_k[k] != 0, 1};
@@ -1059,7 +1060,7 @@ __kernel void trace_rays(TraceParams params, __global const float2* range, __glo
                       (SSRCL_MATERIAL_HITS | bounce);
       if (hit_glossy[k] && bounce)
         second.live[k] = bounce_ray(proj, size, near_plane, far_plane, mirror_roughness, hit, dir, nq,
-                                    fmax(roughness_to_alpha(nq.w, SSRCL_ROUGHNESS_MAPPING), 1e-4f), q, sample, seed,
+                                    fmax(roughness_to_alpha(nq.w, SSRCL_ROUGHNESS_MAPPING), 1e-4f), cell, sample, seed,
                                     &second.ray[k], &second.dir[k]);
     }
     // A second ray's budget of steps is what its first left (scene[k].iterations).
