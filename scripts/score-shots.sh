@@ -4,6 +4,8 @@
 # and the references' noise floor.
 #   bash scripts/score-shots.sh [shots dir] [config ...]      (default out/shots, every config)
 #   SSRCL_SHOTS=living_truck,deck_pan bash scripts/score-shots.sh    (only these shots)
+# A config name with "-back" after it (medium-batch-back) is that config with each frame's back-face
+# depth pass (<shot>/back/, `make_shots.py --back-faces`).
 # Passes go to out/shot-passes/<config>/<shot>/, reports to out/shot-passes/<config>/<shot>.json.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -55,17 +57,19 @@ for c in "${configs[@]}"; do
     env=$(python3 -c 'import json,sys; e=[x for x in json.load(open(sys.argv[1]))["shots"] if x["name"]==sys.argv[2]][0].get("environment"); print(e or "")' "$shots/shots.json" "$s")
     extra=()
     [ -z "$env" ] || extra=(--environment "$shots/$s/$env")
-    if [ "$c" = medium-frameseeds ]; then  # a batch per frame, --seed its index (no frames/s)
+    base=${c%-back}
+    [ "$base" = "$c" ] || extra+=(--back-depth-file "$shots/$s/back/$s.####.exr")
+    if [ "$base" = medium-frameseeds ]; then  # a batch per frame, --seed its index (no frames/s)
       n=$(python3 -c 'import json,sys; print([x for x in json.load(open(sys.argv[1]))["shots"] if x["name"]==sys.argv[2]][0]["frames"])' "$shots/shots.json" "$s")
       for f in $(seq 1 "$n"); do
         # shellcheck disable=SC2086
         "$build/ssrcl" batch "$shots/$s/$s.####.exr" --frames "$f" --seed $((f - 1)) -o "$passes/$c/$s/" \
-          --output-form glossy-pass ${args[$c]} "${extra[@]}" --overwrite -q
+          --output-form glossy-pass ${args[$base]} "${extra[@]}" --overwrite -q
       done
       continue
     fi
     # shellcheck disable=SC2086
-    "$build/ssrcl" batch "$shots/$s/$s.####.exr" -o "$passes/$c/$s/" --output-form glossy-pass ${args[$c]} \
+    "$build/ssrcl" batch "$shots/$s/$s.####.exr" -o "$passes/$c/$s/" --output-form glossy-pass ${args[$base]} \
       "${extra[@]}" --overwrite -q --report "$passes/$c/$s.json"
   done
 done

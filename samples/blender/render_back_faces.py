@@ -39,20 +39,9 @@ def build_scene(corpus, spec, scratch):
 
 def render_back(corpus, spec, outdir, scratch):
     scene = build_scene(corpus, spec, scratch)
-    # The scene's layer is kept out of the render under another name: the file's only layer is a
-    # new ViewLayer, so its channel is ViewLayer.Depth.Z.
-    main = scene.view_layers["ViewLayer"]
-    main.name, main.use = "Scene", False
-    back_faces.make_back_face_layer(scene.view_layers.new("ViewLayer"))
-    scene.cycles.transparent_max_bounces = back_faces.TRANSPARENT_BOUNCES
-    # Blender writes Combined with every layer: black (no world, no emission) it compresses away.
-    scene.world = bpy.data.worlds.new("ssrcl no world")
-    scene.world.color = (0.0, 0.0, 0.0)
-    scene.render.film_transparent = True
-    settings = scene.render.image_settings
-    settings.file_format, settings.color_depth, settings.exr_codec = 'OPEN_EXR_MULTILAYER', '32', 'ZIP'
+    back_faces.make_back_only_render(scene)
     path = os.path.join(outdir, spec["name"] + ".back.exr")
-    scene.render.filepath, scene.render.use_file_extension = path, False
+    scene.render.filepath = path
     start = time.perf_counter()
     bpy.ops.render.render(write_still=True)
     print("BACK %s: %.1f s, %d bytes" % (spec["name"], time.perf_counter() - start, os.path.getsize(path)))

@@ -1,15 +1,18 @@
-"""Render the shot corpus: 12-frame moves through three real-asset scenes (make_real_corpus.py),
+"""Render the shot corpus: 12-frame moves through six real-asset scenes (make_real_corpus.py),
 Cycles references of every frame, a second-seed Cycles render of the first frame (the references'
-noise floor) and EEVEE (legacy SSR, the real-time peer) of the same frames.
+noise floor), each frame's back-face depth pass and EEVEE (legacy SSR, the real-time peer) of the
+same frames.
 
     blender -b --factory-startup --python-exit-code 1 --python samples/real/make_shots.py \
-        -- <outdir> [shot names...]
+        -- [--back-faces] <outdir> [shot names...]
     xvfb-run -a -s "-screen 0 1280x1024x24" blender -b --factory-startup --python-exit-code 1 \
         --python samples/real/make_shots.py -- --eevee <outdir> [shot names...]
 
-scripts/render-shots.sh runs both (out/shots by default; never committed). Writes, per shot:
+scripts/render-shots.sh runs all three (out/shots by default; never committed). Writes, per shot:
   <outdir>/<shot>/<shot>.NNNN.exr + .camera.json   Cycles, frames 1..FRAMES, seed = frame number
   <outdir>/<shot>/seed2/<shot>.0001.exr            frame 1 again, another seed (noise floor)
+  <outdir>/<shot>/back/<shot>.NNNN.exr             the back-face depth of every frame (ViewLayer.Depth.Z,
+                                                   what `ssrcl batch --back-depth-file` reads)
   <outdir>/<shot>/eevee/<shot>.NNNN.exr            EEVEE Specular Light + Color of every frame
   <outdir>/shots.json                              the shots (scene, move, frames, samples)
 
@@ -41,6 +44,7 @@ import make_real_corpus as real  # noqa: E402  (scenes, render settings, compact
 import render_eevee  # noqa: E402  (configure_eevee; make_real_corpus put samples/corpus on the path)
 from script_args import outdir_and_names, script_args  # noqa: E402  (samples/blender: on the path too)
 from scene_common import render_and_write  # noqa: E402
+from ssrcl_addon import back_faces  # noqa: E402
 
 FRAMES = int(os.environ.get("SSRCL_SHOT_FRAMES", 12))
 SAMPLES = int(os.environ.get("SSRCL_SHOT_SAMPLES", 64))
@@ -133,6 +137,33 @@ def render_cycles(shot, outdir):
     return spec
 
 
+def render_each_frame(shot, scene, d, label):
+    """Renders frames 1..FRAMES of the shot into d/<shot>.NNNN.exr, each at its own seed (as the
+    references), skipping those an earlier, interrupted run wrote."""
+    for frame in range(1, FRAMES + 1):
+        place(shot, scene, frame)
+        scene.cycles.seed = frame
+        path = os.path.join(d, "%s.%04d.exr" % (shot["name"], frame))
+        if os.path.exists(path):
+            continue
+        scene.render.filepath = path + ".tmp.exr"  # renamed once whole: a killed write is not skipped
+        start = time.perf_counter()
+        bpy.ops.render.render(write_still=True)
+        os.replace(scene.render.filepath, path)
+        print("%s %s %04d: %.1f s" % (label, shot["name"], frame, time.perf_counter() - start), flush=True)
+
+
+def render_back_faces(shot, outdir):
+    """Each frame's back-face depth as render_back_faces.py renders a corpus scene's: the file's only
+    layer is the back-face one (ViewLayer.Depth.Z), one sample at the frame's own seed, so its Z
+    comes from the sub-pixel position of the reference's first sample."""
+    d = os.path.join(outdir, shot["name"], "back")
+    os.makedirs(d, exist_ok=True)
+    _, scene = build(shot, d, back_faces.SAMPLES)
+    back_faces.make_back_only_render(scene, real.LAYER)
+    render_each_frame(shot, scene, d, "BACK")
+
+
 def render_peer(shot, outdir):
     d = os.path.join(outdir, shot["name"], "eevee")
     os.makedirs(d, exist_ok=True)
@@ -147,17 +178,7 @@ def render_peer(shot, outdir):
         layer.active_aov_index = 0
         bpy.ops.scene.view_layer_remove_aov()
     scene.render.use_file_extension = False
-    for frame in range(1, FRAMES + 1):
-        place(shot, scene, frame)
-        path = os.path.join(d, "%s.%04d.exr" % (shot["name"], frame))
-        if os.path.exists(path):
-            continue  # written by an earlier, interrupted run
-        scene.render.filepath = path + ".tmp.exr"  # renamed once whole: a killed write is not skipped
-        start = time.perf_counter()
-        bpy.ops.render.render(write_still=True)
-        os.replace(scene.render.filepath, path)
-        print("EEVEE %s %04d: %.1f s" % (shot["name"], frame, time.perf_counter() - start),
-              flush=True)
+    render_each_frame(shot, scene, d, "EEVEE")
 
 
 def write_manifest(outdir, shot):
@@ -176,15 +197,16 @@ def write_manifest(outdir, shot):
 
 def main():
     args = script_args()
-    eevee = bool(args) and args[0] == "--eevee"
-    if eevee:
-        args.pop(0)
+    mode = args.pop(0) if args and args[0] in ("--eevee", "--back-faces") else None
     outdir, names = outdir_and_names(args, SHOT_BY_NAME,
-                                     "usage: ... make_shots.py -- [--eevee] <outdir> [shots...]", kind="shot")
+                                     "usage: ... make_shots.py -- [--eevee|--back-faces] <outdir> [shots...]",
+                                     kind="shot")
     shots = [SHOT_BY_NAME[n] for n in names]
     for shot in shots:
-        if eevee:
+        if mode == "--eevee":
             render_peer(shot, outdir)
+        elif mode == "--back-faces":
+            render_back_faces(shot, outdir)
         else:
             render_cycles(shot, outdir)
             write_manifest(outdir, shot)

@@ -53,3 +53,21 @@ def add_back_face_layer(scene):
     make_back_face_layer(layer)
     scene.cycles.transparent_max_bounces = max(scene.cycles.transparent_max_bounces, TRANSPARENT_BOUNCES)
     return layer
+
+
+def make_back_only_render(scene, layer="ViewLayer"):
+    """Makes `scene` render the back-face depth alone, into a file of its own: the scene's `layer`
+    is kept out of the render under another name and a new back-face layer takes the name, so the
+    file's channel is <layer>.Depth.Z (what `ssrcl trace --back-depth-file` reads by default);
+    32-bit ZIP multilayer EXR."""
+    main = scene.view_layers[layer]
+    main.name, main.use = "Scene", False
+    make_back_face_layer(scene.view_layers.new(layer))
+    scene.cycles.transparent_max_bounces = TRANSPARENT_BOUNCES
+    # Blender writes Combined with every layer: black (no world, no emission) it compresses away.
+    scene.world = bpy.data.worlds.new("ssrcl no world")
+    scene.world.color = (0.0, 0.0, 0.0)
+    scene.render.film_transparent = True
+    settings = scene.render.image_settings
+    settings.file_format, settings.color_depth, settings.exr_codec = 'OPEN_EXR_MULTILAYER', '32', 'ZIP'
+    scene.render.use_file_extension = False
