@@ -32,8 +32,9 @@ struct FrameInFlight {
   std::optional<Error> error;  // why it failed, as thrown (a --temporal window's frame names it)
   Frame frame;
   Image reflection, distance, view;  // view: with auxiliary views only
-  std::vector<std::string> views;    // the files of its views, in view order
-  std::vector<std::string> temporal;  // the frames its pass was blended with (--temporal)
+  // Its output's header: made once it is traced, while its G-buffer (which says whether a back-face
+  // pass was read) is still held.
+  ReflectionExrOptions written;
   bool deviceUnusable = false;  // no later frame can succeed either: stop rather than fail each
 };
 
@@ -146,13 +147,9 @@ BatchRun BatchRunner::run(const std::vector<FrameJob>& jobs, std::vector<FrameOu
         attempt(*f, f->outcome.writeSeconds, kExitOutput, [&] {
           const std::filesystem::path parent = std::filesystem::path(jobs[f->index].output).parent_path();
           if (!parent.empty()) std::filesystem::create_directories(parent);
-          const FrameJob& job = jobs[f->index];
-          OutputRecord record = record_;
-          record.views = f->views;
-          record.temporal = f->temporal;
-          ReflectionExrOptions written = writerOptions(output_, record, job.input, f->frame.passes, f->frame);
+          ReflectionExrOptions written = f->written;
           if (!f->view.empty()) written.view = &f->view;
-          writeReflectionExr(job.output, f->reflection, f->distance, written);
+          writeReflectionExr(jobs[f->index].output, f->reflection, f->distance, written);
         });
         finish(*f);
       }
@@ -165,18 +162,20 @@ BatchRun BatchRunner::run(const std::vector<FrameJob>& jobs, std::vector<FrameOu
     const std::string& input = jobs[f.index].input;
     // Here, while the frame's material passes are still held: the G-buffer is released below.
     toOutputForm(input_.form, f.reflection, f.frame.gbuffer, f.frame.camera, input_.roughness);
-    f.views = staticViews_;
-    if (temporal_) f.temporal = temporal_->filesOf(input);
+    OutputRecord record = record_;
+    record.views = staticViews_;
+    if (temporal_) record.temporal = temporal_->filesOf(input);
     if (neighbours_) {
       // The views this frame was traced with: with --temporal, later traces have moved them since.
       const std::vector<std::string> neighbours = temporal_ ? neighbours_->filesOf(input) : neighbours_->files();
-      f.views.insert(f.views.end(), neighbours.begin(), neighbours.end());
-      if (!temporal_) {
-        Frame traced;  // its next frames' neighbour
-        traced.gbuffer = std::move(f.frame.gbuffer);
-        traced.camera = f.frame.camera;
-        neighbours_->keep(input, std::move(traced));
-      }
+      record.views.insert(record.views.end(), neighbours.begin(), neighbours.end());
+    }
+    f.written = writerOptions(output_, record, input, f.frame.passes, f.frame);
+    if (neighbours_ && !temporal_) {
+      Frame traced;  // its next frames' neighbour
+      traced.gbuffer = std::move(f.frame.gbuffer);
+      traced.camera = f.frame.camera;
+      neighbours_->keep(input, std::move(traced));
     }
     f.frame.gbuffer = GBuffer{};
   };
