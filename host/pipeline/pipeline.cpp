@@ -76,6 +76,7 @@ struct Pipeline::Impl {
   explicit Impl(const Device& d) : device(d) {}
   void plan();
   void run();
+  void drainQueue() noexcept;
   void report(double fraction);
   const float* packHitF0();
   static void download(cl::CommandQueue& q, const cl::Buffer& buffer, Image& image, bool hostMemory,
@@ -192,9 +193,19 @@ void Pipeline::Impl::plan() {
 }
 
 void Pipeline::Impl::report(double fraction) {
-  if (progress && !progress(fraction)) {
-    DeviceAccess::impl(device).queue.finish();
+  if (progress && !progress(fraction))
     throw Error(ErrorCode::Cancelled, "pipeline: execute() cancelled by the progress monitor");
+}
+
+// Before an error leaves commit() or execute(): the commands already enqueued read and write host
+// memory in place on a CPU device (the caller's images, the pipeline's own), which the unwinding
+// may free under them. A download that failed with the whole frame still in flight corrupted the
+// heap as the CLI exited (test_opencl_faults, under load). A queue that cannot finish has nothing
+// left to run.
+void Pipeline::Impl::drainQueue() noexcept {
+  try {
+    DeviceAccess::impl(device).queue.finish();
+  } catch (...) {
   }
 }
 
@@ -388,8 +399,12 @@ void Pipeline::commit() {
   try {
     impl_->plan();
   } catch (const cl::Error& e) {
+    impl_->drainQueue();
     rethrowClError(e, "allocating device buffers for " + std::to_string(impl_->camera.width) + "x" +
                           std::to_string(impl_->camera.height));
+  } catch (...) {
+    impl_->drainQueue();
+    throw;
   }
   for (const auto& [name, view] : impl_->outputViews)
     if (view.width != impl_->camera.width || view.height != impl_->camera.height)
@@ -410,7 +425,11 @@ void Pipeline::execute() {
       impl_->inputs.validate(impl_->camera, impl_->settings);  // an Image's data may no longer fit its shape
     impl_->run();
   } catch (const cl::Error& e) {
+    impl_->drainQueue();
     rethrowClError(e, std::string("executing the SSR pipeline (") + impl_->stage + " stage)");
+  } catch (...) {
+    impl_->drainQueue();
+    throw;
   }
 }
 
