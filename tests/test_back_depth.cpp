@@ -11,6 +11,7 @@
 #include "support/exr_fixtures.hpp"
 #include "support/run_command.hpp"
 #include "support/temp_dir.hpp"
+#include "support/test_device.hpp"
 
 namespace {
 
@@ -125,6 +126,26 @@ TEST(BackDepth, BackFacesLayerOfTheFrameIsReadWithNoOption) {
   FrameSource plain;
   plain.file = kScene + ".exr";
   EXPECT_TRUE(loadFrame(plain).gbuffer.backDepth.empty());
+}
+
+// A pipeline reused for the next frame (as `ssrcl batch` reuses one) traces that frame with the
+// passes it has: one without a back pass after one with it forgets the first's (which it read
+// through a pointer left behind, the previous frame's images freed by then in a batch).
+TEST(BackDepth, APipelineReusedForAFrameWithoutOneForgetsIt) {
+  FrameSource plain;
+  plain.file = kScene + ".exr";
+  const Frame with = loadFrame(sceneWithBack(kScene + ".back.exr")), without = loadFrame(plain);
+  const auto reflection = [](Pipeline& p, const Frame& f) {
+    setFrame(p, f);
+    p.commit();
+    p.execute();
+    return p.output("reflection").data;
+  };
+  Pipeline reused(test::sharedTestDevice()), fresh(test::sharedTestDevice());
+  const std::vector<float> traced = reflection(reused, with);
+  EXPECT_EQ(reflection(reused, without), reflection(fresh, without));
+  EXPECT_NE(reflection(fresh, with), reflection(fresh, without));  // the pass matters on this scene
+  EXPECT_EQ(reflection(fresh, with), traced);
 }
 
 std::string inputsRecord(const std::string& exr) { return ssrcl::test::stringAttribute(exr, "ssrcl/inputs"); }

@@ -343,13 +343,15 @@ void Pipeline::setGBuffer(const GBuffer& gbuffer) {
   setImage("color", gbuffer.color);
   setImage("depth", gbuffer.depth);
   setImage("normal", gbuffer.normal);
-  if (!gbuffer.roughness.empty()) setImage("roughness", gbuffer.roughness);
-  if (!gbuffer.base.empty()) setImage("base", gbuffer.base);
-  if (!gbuffer.specular.empty()) setImage("specular", gbuffer.specular);
-  if (!gbuffer.f0.empty()) setImage("f0", gbuffer.f0);
-  if (!gbuffer.baseColor.empty()) setImage("base_color", gbuffer.baseColor);
-  if (!gbuffer.metallic.empty()) setImage("metallic", gbuffer.metallic);
-  if (!gbuffer.backDepth.empty()) setImage("back_depth", gbuffer.backDepth);
+  // The optional passes too, empty or not: an empty image unsets its input, so a pipeline reused
+  // for the next frame keeps none of the previous frame's (whose images may be gone by then).
+  setImage("roughness", gbuffer.roughness);
+  setImage("base", gbuffer.base);
+  setImage("specular", gbuffer.specular);
+  setImage("f0", gbuffer.f0);
+  setImage("base_color", gbuffer.baseColor);
+  setImage("metallic", gbuffer.metallic);
+  setImage("back_depth", gbuffer.backDepth);
 }
 
 void Pipeline::setView(int index, const GBuffer& gbuffer, const Camera& camera, const std::string& label,

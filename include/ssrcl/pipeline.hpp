@@ -210,7 +210,8 @@ class Pipeline {
   // Caller-owned memory that execute() writes the output ("reflection": 4 channels, "distance": 1)
   // into, in its layout; output(name) keeps working as well.
   void setOutput(const std::string& name, const ImageView& view);
-  // All four passes of a loaded G-buffer (roughness only when it has one), same lifetime rule.
+  // Every pass of a loaded G-buffer, same lifetime rule; the optional ones it lacks (roughness,
+  // material, back-face depth) are unset, so set any of those by setImage after it.
   void setGBuffer(const GBuffer& gbuffer);
   void setCamera(const Camera& camera);
   // Auxiliary view `index` (0, 1, ...; index viewCount() adds one, at most kMaxViews): another G-buffer
