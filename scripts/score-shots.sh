@@ -58,6 +58,7 @@ for c in "${configs[@]}"; do
     extra=()
     [ -z "$env" ] || extra=(--environment "$shots/$s/$env")
     base=${c%-back}
+    [[ -v "args[$base]" ]] || { echo "score-shots.sh: unknown configuration '$c'" >&2; exit 2; }
     [ "$base" = "$c" ] || extra+=(--back-depth-file "$shots/$s/back/$s.####.exr")
     if [ "$base" = medium-frameseeds ]; then  # a batch per frame, --seed its index (no frames/s)
       n=$(python3 -c 'import json,sys; print([x for x in json.load(open(sys.argv[1]))["shots"] if x["name"]==sys.argv[2]][0]["frames"])' "$shots/shots.json" "$s")
