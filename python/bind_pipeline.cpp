@@ -29,6 +29,12 @@ class PythonPipeline {
     inputs_[name] = {view, std::move(keeper)};
   }
 
+  // No such input any more (an empty Image unsets it in the C++ pipeline, which keeps nothing of it).
+  void unsetImage(const std::string& name) {
+    pipeline_->setImage(name, Image());
+    inputs_.erase(name);
+  }
+
   void setCamera(const Camera& camera) {
     pipeline_->setCamera(camera);
     camera_ = camera;
@@ -145,7 +151,7 @@ void bindPipeline(py::module_& m) {
           },
           py::arg("name"), py::arg("image"),
           "An input as an HxWxC array (HxW for one channel): color (3 or 4), depth, normal, roughness, base, "
-          "specular, f0 (3) or base_color (3) and metallic. float32 and float16 arrays of any positive strides "
+          "specular, f0 (3) or base_color (3) and metallic, back_depth. float32 and float16 arrays of any positive strides "
           "are read where they are (no copy) at commit() and execute(), so keep them unchanged until then; other "
           "dtypes and layouts are converted once.")
       .def(
@@ -160,9 +166,14 @@ void bindPipeline(py::module_& m) {
                                                                    {"specular", &g.specular},
                                                                    {"f0", &g.f0},
                                                                    {"base_color", &g.baseColor},
-                                                                   {"metallic", &g.metallic}};
-            for (const auto& [name, image] : passes)  // shares the frame's pixels, no copy
-              if (!image->empty())
+                                                                   {"metallic", &g.metallic},
+                                                                   {"back_depth", &g.backDepth}};
+            // Shares the frame's pixels, no copy; a pass the frame lacks is unset, as Pipeline::setGBuffer
+            // does, so a pipeline reused for the next frame keeps none of the previous frame's.
+            for (const auto& [name, image] : passes)
+              if (image->empty())
+                p.unsetImage(name);
+              else
                 p.setImage(name, ImageView(image->data.data(), image->width, image->height, image->channels),
                            std::shared_ptr<const Image>(frame, image));
             p.setCamera(frame->camera);

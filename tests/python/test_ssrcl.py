@@ -178,6 +178,24 @@ def python_pass(frame, settings, environment=None):
 
 
 class CliEquivalenceOfOptionsTest(unittest.TestCase):
+    def test_back_face_pass_matches_cli_and_a_reused_pipeline_forgets_it(self):
+        scene = os.path.join(SOURCE_DIR, "samples", "corpus", "thin_objects")
+        with tempfile.TemporaryDirectory() as tmp:
+            cli = cli_pass(tmp, [scene + ".exr", "--back-depth-file", scene + ".back.exr"])
+        settings = ssrcl.TraceSettings()
+        with_back = ssrcl.loadFrame(scene + ".exr", backDepthFile=scene + ".back.exr")
+        without = ssrcl.loadFrame(scene + ".exr")
+        np.testing.assert_array_equal(bits(python_pass(with_back, settings)), bits(cli))
+        p = ssrcl.Pipeline(ssrcl.Device())
+        p.settings = settings
+        for frame in (with_back, without):  # a frame without the pass after one with it
+            p.setFrame(frame)
+            p.commit()
+            p.execute()
+        alone = python_pass(without, settings)
+        np.testing.assert_array_equal(bits(p.output("reflection")), bits(alone))
+        self.assertFalse(np.array_equal(bits(alone), bits(cli)))
+
     def test_environment_fill_matches_cli(self):
         shot, sky = os.path.join(ENV_DIR, "env_plaza.exr"), os.path.join(ENV_DIR, "sky.exr")
         with tempfile.TemporaryDirectory() as tmp:
