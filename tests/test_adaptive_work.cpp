@@ -3,6 +3,7 @@
 // roughness must give each pixel the count the documented rule says.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 
@@ -124,6 +125,22 @@ TEST(Classification, ReusedPipelineClearsUnlistedTiles) {
   EXPECT_GT(firstAlpha, 1000.0);  // the first frame reflected in most places
   EXPECT_EQ(second.rgba.data, fresh.rgba.data);
   EXPECT_EQ(second.distance.data, fresh.distance.data);
+}
+
+// A frame too large for all its rays' records at once traces them in batches (TraceStage::plan);
+// the next, smaller frame through the same pipeline and settings gets all of them in one again,
+// as a fresh pipeline does (the batch had only shrunk from frame to frame; batches change the
+// pass: each resolves its own rays).
+TEST(Classification, ReusedPipelineSizesItsRayBatchesPerFrame) {
+  Frame sky = halfSky(800, 800);  // 32 rays a pixel: 26 in a batch at this size
+  std::fill(sky.g.depth.data.begin(), sky.g.depth.data.end(), INFINITY);  // all sky: nothing traced
+  const Frame small = halfSky(200, 120);
+  TraceSettings s = ssrcl::qualityPreset("medium");
+  s.samplesPerPixel = 32;
+  ssrcl::Pipeline p(sharedTestDevice());
+  run(p, sky, s);
+  const Output second = run(p, small, s), fresh = run(small, s);
+  EXPECT_EQ(second.rgba.data, fresh.rgba.data);
 }
 
 // The rule: samplesPerPixel from fullRaysRoughness up, ceil(spp * r / full) below (at least 1),

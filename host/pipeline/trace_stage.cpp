@@ -68,14 +68,15 @@ void TraceStage::configure(Device::Impl& device, const TraceSettings& s, bool ha
                                                "color_lookup.cl", "surface_plane.cl", "trace.cl"},
                                               defines);
   kernel_ = cl::Kernel(program, "trace_rays");
-  batch_ = s.samplesPerPixel;
+  samples_ = s.samplesPerPixel;
 }
 
 void TraceStage::plan(FrameResources& resources, DeviceBuffers& buffers, const FrameShape& frame) {
   frame_ = frame;
   const size_t pixels = frame.pixels();
   const size_t perSample = pixels * sizeof(cl_float4);  // of each of the two record buffers
-  batch_ = std::min(batch_, static_cast<int>(std::max<size_t>(1, kRayRecordBudget / (2 * perSample))));
+  // Each frame's own: a pipeline reused for a smaller frame takes all its rays at once again.
+  batch_ = std::min(samples_, static_cast<int>(std::max<size_t>(1, kRayRecordBudget / (2 * perSample))));
   resources.plan(access, buffers, Role::RayHits, perSample * batch_);
   resources.plan(access, buffers, Role::RayRadiance, perSample * batch_);
   resources.plan(access, buffers, Role::RayStates, views_ ? pixels * batch_ : 0);

@@ -37,6 +37,7 @@ class TraceStage {
 
  private:
   bool hasBase_ = false, materials_ = false, counting_ = false, views_ = false;
+  int samples_ = 1;  // rays a pixel (TraceSettings::samplesPerPixel)
   int batch_ = 1;
   Device::Impl* device_ = nullptr;
   FrameShape frame_;
