@@ -100,6 +100,9 @@ std::vector<size_t> NeighbourWindow::windowAfter(size_t index) const {
 
 void NeighbourWindow::keep(const std::string& input, Frame&& frame) {
   const size_t index = indexOf(input);
+  // A frame a slot still shows stays as it was read: the pipeline's view points into its images
+  // (a frame traced with no moveTo, its window's blends all failed, could be shown from before).
+  if (std::find(slots_.begin(), slots_.end(), index) != slots_.end()) return;
   const std::vector<size_t> wanted = windowAfter(index);
   if (std::find(wanted.begin(), wanted.end(), index) != wanted.end())
     loaded_[index] = std::make_shared<const Frame>(std::move(frame));
