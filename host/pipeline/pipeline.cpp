@@ -101,6 +101,15 @@ const float* Pipeline::Impl::packHitF0() {
   return hitF0.data();
 }
 
+// Whether `a` needs the stages configured and planned again after `b`: not for the seed alone,
+// which run() hands the trace as it is (a batch blending its frames gives each its own seed).
+namespace {
+bool sameButSeed(TraceSettings a, const TraceSettings& b) {
+  a.seed = b.seed;
+  return a == b;
+}
+}  // namespace
+
 // Validates, then configures the stages (kernels of the settings' variants), plans and allocates
 // their buffers (reusing what an earlier commit allocated at the same sizes) and binds them.
 void Pipeline::Impl::plan() {
@@ -115,7 +124,7 @@ void Pipeline::Impl::plan() {
   const bool base = inputs.has("base");
   const bool materials = inputs.has("f0") || inputs.has("base_color");
   const bool back = inputs.has("back_depth");
-  const bool reconfigure = !configured || settings != committedSettings || base != hasBase ||
+  const bool reconfigure = !configured || !sameButSeed(settings, committedSettings) || base != hasBase ||
                            materials != hasMaterials || back != hasBackDepth || environmentChanged ||
                            views.size() != committedViews;
   const int viewCount = static_cast<int>(views.size());
@@ -421,7 +430,7 @@ void Pipeline::execute() {
   impl_->inputs.checkUnchanged(impl_->committedInputs);
   try {
     impl_->stage = "planning";
-    if (impl_->settings != impl_->committedSettings)
+    if (!sameButSeed(impl_->settings, impl_->committedSettings))
       impl_->plan();  // settings changed after commit
     else
       impl_->inputs.validate(impl_->camera, impl_->settings);  // an Image's data may no longer fit its shape
