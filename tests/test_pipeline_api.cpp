@@ -94,6 +94,13 @@ TEST(PipelineApi, SettingsChangedAfterCommitAreValidatedAndApplied) {
   p.settings() = changed;
   p.execute();
   expectSame({p.output("reflection"), p.output("distance")}, reference(f, changed));
+  // A new seed alone needs no new plan (a blending batch's frames each have one), but is applied.
+  const std::vector<float> before = p.output("reflection").data;
+  changed.seed = 7;
+  p.settings() = changed;
+  p.execute();
+  expectSame({p.output("reflection"), p.output("distance")}, reference(f, changed));
+  EXPECT_NE(p.output("reflection").data, before);
   p.settings().samplesPerPixel = 0;
   try {
     p.execute();
