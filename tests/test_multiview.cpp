@@ -577,6 +577,29 @@ TEST(Neighbours, ResumingComparesTheViews) {
   EXPECT_NE(none.output.find("but none is asked now; give --overwrite"), std::string::npos) << none.output;
 }
 
+// A shard's frames have the whole run's views, in the same order, however many frames went before
+// in either: with 16 frames the default windows (one neighbour each side, 12 frames out) differ
+// between runs that start at frame 1 and at a shard's first frame; the views' order decides the
+// `view` channel and how sums over views round. Every output equals the whole run's, bit for bit.
+TEST(Neighbours, ShardsHaveTheWholeRunsViewsInOrder) {
+  TempDir dir{"ssrcl-neighbour-shards"};
+  AnalyticSequence sequence;
+  sequence.directory = dir.file("in");
+  sequence.frameCount = 16;
+  sequence.roughness = 0.3;
+  const std::string batch =
+      shellQuote(SSRCL_CLI) + " batch " + shellQuote(writeAnalyticSequence(sequence)) + " -q --neighbours 1 -o ";
+  ASSERT_EQ(runCommand(batch + shellQuote(dir.file("whole") + "/")).exitCode, 0);
+  for (int shard = 0; shard < 8; ++shard) {
+    const auto r = runCommand(batch + shellQuote(dir.file("shards") + "/") + " --shard " + std::to_string(shard) + "/8");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+  }
+  for (int frame = 1001; frame <= 1016; ++frame) {
+    const std::string name = "/shot." + std::to_string(frame) + ".refl.exr";
+    EXPECT_EQ(readBytes(dir.file("shards") + name), readBytes(dir.file("whole") + name)) << name;
+  }
+}
+
 TEST(Neighbours, BadCountsAndMissingCamerasAreNamed) {
   const NeighbourShot& shot = neighbourShot();
   const std::string batch = shellQuote(SSRCL_CLI) + " batch " + shellQuote(shot.pattern) + " --overwrite -o " +

@@ -66,16 +66,20 @@ void NeighbourWindow::moveTo(Pipeline& pipeline, const std::string& input) {
   const size_t index = indexOf(input);
   const std::vector<size_t> window = members(index, sequence_.size(), k_, reach_);
   const auto wanted = [&](size_t j) { return std::find(window.begin(), window.end(), j) != window.end(); };
-  for (auto& slot : slots_)
-    if (slot && !wanted(*slot)) slot.reset();
+  // View k is the window's k-th frame, whichever frames went before: a shard's or a resumed run's
+  // frame then has the views, in the order, of the whole run's (their order decides the `view`
+  // channel and the rounding of sums over views). A frame that moves to another slot is set again.
+  for (size_t k = 0; k < slots_.size(); ++k)
+    if (slots_[k] != window[k]) slots_[k].reset();
   // Frames kept are this window's and the next frame's (frames go in order): the others are read
   // again when a later window wants them, so memory stays within 4K G-buffers however far the reach.
   const std::vector<size_t> next = windowAfter(index);
   for (auto it = loaded_.begin(); it != loaded_.end();)
     it = wanted(it->first) || std::find(next.begin(), next.end(), it->first) != next.end() ? std::next(it)
                                                                                            : loaded_.erase(it);
-  for (size_t j : window) {
-    if (std::find(slots_.begin(), slots_.end(), j) != slots_.end()) continue;
+  for (size_t slot = 0; slot < window.size(); ++slot) {
+    const size_t j = window[slot];
+    if (slots_[slot]) continue;
     const FrameJob& job = sequence_[j];
     std::shared_ptr<const Frame>& frame = loaded_[j];
     if (!frame) try {
@@ -88,7 +92,6 @@ void NeighbourWindow::moveTo(Pipeline& pipeline, const std::string& input) {
         loaded_.erase(j);
         throw Error(e.code(), "neighbour " + job.input + ": " + e.what());
       }
-    const size_t slot = size_t(std::find(slots_.begin(), slots_.end(), std::nullopt) - slots_.begin());
     slots_[slot] = j;
     pipeline.setView(firstView_ + int(slot), frame->gbuffer, frame->camera, job.input, ViewTime::Other);
   }

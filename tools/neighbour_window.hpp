@@ -2,9 +2,10 @@
 // `ssrcl batch --neighbours K`: frames of the shot around each frame as its auxiliary views
 // (ViewTime::Other: static geometry only), K on each side reaching `--neighbour-reach` frames out.
 // Frames far apart show what the frame does not (what lies past its edges as the camera moves),
-// where adjacent ones add little. Moving from one frame to the next replaces only the views that
-// left its window; each frame is read, uploaded and prepared (setup, thickness, HZB, colours) once
-// while it stays in a window, and read again where a later window wants it back.
+// where adjacent ones add little. View k is always the window's k-th frame in sequence order, so
+// a frame's views are the same whatever frames went before it (shards, resumed runs); moving from
+// one frame to the next replaces the views whose frame changed, and a frame read once serves the
+// windows that follow while they want it (read again where a later window wants it back).
 #include <map>
 #include <memory>
 #include <optional>
@@ -36,13 +37,13 @@ class NeighbourWindow {
   // far out on the other; a frame taken already gives way to the nearest free one.
   static std::vector<size_t> members(size_t index, size_t count, int k, int reach);
 
-  // Makes the pipeline's neighbour views those of the frame read from `input`: frames that left
-  // the window give their view to frames that entered it (read with the frames' channel options
-  // and camera rules); the rest stay as they are. Errors name the neighbour's file.
+  // Makes the pipeline's neighbour views those of the frame read from `input`, view k its window's
+  // k-th frame (read with the frames' channel options and camera rules); views that show that
+  // frame already stay as they are. Errors name the neighbour's file.
   void moveTo(Pipeline& pipeline, const std::string& input);
   // Keeps the G-buffer of the frame read from `input`, just traced, for its successors' windows.
   void keep(const std::string& input, Frame&& frame);
-  // The neighbours' files in view order (for the output's record of its views).
+  // The neighbours' files in view order, which is sequence order (for the output's record).
   std::vector<std::string> files() const;
   // The files of the frame read from `input`'s neighbours, in sequence order (what resuming
   // compares with an output's record).
