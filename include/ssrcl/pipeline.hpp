@@ -222,10 +222,11 @@ class Pipeline {
   // traced the same way against each view's own depth; the hit's colour is the view's. A is then
   // the fraction of the lobe found in any view, and output("view") says where (see there).
   // `label` names the view in messages (e.g. its file); `time` says when it was rendered (ViewTime).
-  // The G-buffer must stay alive until execute(), which reads it once: later executes (other
-  // frames, through commits that keep the settings and sizes) reuse what the view uploaded;
-  // setView again after changing its pixels. Replacing view k leaves the others' device images
-  // as they are: a window of neighbouring frames slides by replacing the views that left it.
+  // The G-buffer must stay alive while it is a view (until it is replaced or the views cleared):
+  // every commit() checks its shape, and a commit that configures or reallocates the stages
+  // uploads it again; otherwise later executes (other frames, through commits that keep the
+  // settings and sizes) reuse what the view uploaded, so setView again after changing its pixels.
+  // Replacing view k leaves the others' device images as they are.
   void setView(int index, const GBuffer& gbuffer, const Camera& camera, const std::string& label = {},
                ViewTime time = ViewTime::Same);
   void clearViews();
