@@ -157,20 +157,9 @@ void bindPipeline(py::module_& m) {
       .def(
           "setFrame",
           [](PythonPipeline& p, std::shared_ptr<Frame> frame) {
-            const GBuffer& g = frame->gbuffer;
-            const std::pair<const char*, const Image*> passes[] = {{"color", &g.color},
-                                                                   {"depth", &g.depth},
-                                                                   {"normal", &g.normal},
-                                                                   {"roughness", &g.roughness},
-                                                                   {"base", &g.base},
-                                                                   {"specular", &g.specular},
-                                                                   {"f0", &g.f0},
-                                                                   {"base_color", &g.baseColor},
-                                                                   {"metallic", &g.metallic},
-                                                                   {"back_depth", &g.backDepth}};
             // Shares the frame's pixels, no copy; a pass the frame lacks is unset, as Pipeline::setGBuffer
             // does, so a pipeline reused for the next frame keeps none of the previous frame's.
-            for (const auto& [name, image] : passes)
+            for (const auto& [name, image] : pipelinePasses(frame->gbuffer))
               if (image->empty())
                 p.unsetImage(name);
               else

@@ -349,18 +349,9 @@ void Pipeline::setOutput(const std::string& name, const ImageView& view) {
 }
 
 void Pipeline::setGBuffer(const GBuffer& gbuffer) {
-  setImage("color", gbuffer.color);
-  setImage("depth", gbuffer.depth);
-  setImage("normal", gbuffer.normal);
   // The optional passes too, empty or not: an empty image unsets its input, so a pipeline reused
   // for the next frame keeps none of the previous frame's (whose images may be gone by then).
-  setImage("roughness", gbuffer.roughness);
-  setImage("base", gbuffer.base);
-  setImage("specular", gbuffer.specular);
-  setImage("f0", gbuffer.f0);
-  setImage("base_color", gbuffer.baseColor);
-  setImage("metallic", gbuffer.metallic);
-  setImage("back_depth", gbuffer.backDepth);
+  for (const auto& [name, image] : pipelinePasses(gbuffer)) setImage(name, *image);
 }
 
 void Pipeline::setView(int index, const GBuffer& gbuffer, const Camera& camera, const std::string& label,

@@ -1,6 +1,8 @@
 #pragma once
+#include <array>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "ssrcl/camera.hpp"
@@ -115,6 +117,21 @@ struct GBuffer {
   // The camera in that file's header, when it has camera attributes.
   std::optional<HeaderCamera> headerCamera;
 };
+
+// The passes of `g` a pipeline takes, by their Pipeline::setImage names: the three it needs, then
+// the optional ones (empty where `g` lacks them). Pipeline::setGBuffer and the bindings set them all.
+inline std::array<std::pair<const char*, const Image*>, 10> pipelinePasses(const GBuffer& g) {
+  return {{{"color", &g.color},
+           {"depth", &g.depth},
+           {"normal", &g.normal},
+           {"roughness", &g.roughness},
+           {"base", &g.base},
+           {"specular", &g.specular},
+           {"f0", &g.f0},
+           {"base_color", &g.baseColor},
+           {"metallic", &g.metallic},
+           {"back_depth", &g.backDepth}}};
+}
 
 // A horizontal field of view (degrees, across the display window, of a pinhole whose axis is at the
 // window's centre: 2 atan(aperture / (2 focal length))) for the header camera of `file`: completes
