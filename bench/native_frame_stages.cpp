@@ -37,11 +37,6 @@ struct LineScratch {
   }
 };
 
-// thickness.cl predicts, with 1 / d and 0.01 / d given (the same roundings: 2 / d1 is 2 (1 / d1)).
-inline bool predicts(float d0, float inv0, float d1, float inv1, float d2, float inv2, float tolInv2) {
-  return std::fabs(inv2 - (2.0f * inv1 - inv0)) <= tolInv2 || std::fabs(d2 - (2.0f * d1 - d0)) <= 0.01f * d2;
-}
-
 struct ThicknessLines {
   int w, h;
   const vec4* positions;

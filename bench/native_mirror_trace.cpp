@@ -62,6 +62,7 @@ struct NativeMirrorTrace::Impl {
   glm::mat3 normalMatrix;
   float nearPlane, farPlane, thicknessRel, maxRoughness, constantRoughness;
   int maxIterations;
+  bool edgeColors;
   bool adaptive;  // setup's planes for the adaptive thickness model (runFrame's thickness stage rescales them)
   AdaptiveThickness thicknessModel;
   const GBuffer& g;
@@ -76,12 +77,21 @@ struct NativeMirrorTrace::Impl {
   long long rays = 0;
 
   Impl(const GBuffer& gbuffer, const Camera& camera, const TraceSettings& s)
-      : w(camera.width), h(camera.height), proj(camera.projection), invProj(glm::inverse(camera.projection)),
-        normalMatrix(glm::inverseTranspose(glm::dmat3(camera.view))), nearPlane(float(camera.nearPlane)),
-        farPlane(float(camera.farPlane)), thicknessRel(s.thicknessRelative), maxRoughness(s.maxRoughness),
-        constantRoughness(s.constantRoughness.value_or(-1.0f)), maxIterations(s.maxIterations > 0 ? s.maxIterations : 512),
+      : w(camera.width),
+        h(camera.height),
+        proj(camera.projection),
+        invProj(glm::inverse(camera.projection)),
+        normalMatrix(glm::inverseTranspose(glm::dmat3(camera.view))),
+        nearPlane(float(camera.nearPlane)),
+        farPlane(float(camera.farPlane)),
+        thicknessRel(s.thicknessRelative),
+        maxRoughness(s.maxRoughness),
+        constantRoughness(s.constantRoughness.value_or(-1.0f)),
+        maxIterations(s.maxIterations > 0 ? s.maxIterations : 512),
+        edgeColors(s.edgeColors),
         adaptive(s.thicknessModel == ThicknessModel::Adaptive),
-        thicknessModel{s.thicknessScale, s.thicknessMinRelative, s.thicknessMaxRelative}, g(gbuffer) {
+        thicknessModel{s.thicknessScale, s.thicknessMinRelative, s.thicknessMaxRelative},
+        g(gbuffer) {
     // The pyramid as host/pipeline/stage_support.cpp lays it out: each level ceil(half) of the last, to 1x1.
     int offset = 0;
     for (int lw = w, lh = h;; lw = (lw + 1) / 2, lh = (lh + 1) / 2) {
@@ -134,6 +144,47 @@ struct NativeMirrorTrace::Impl {
     return depth > 0.0f && std::isfinite(depth) ? depth : -1.0f;
   }
 
+  // setup.cl depth_or_none, same_surface, surface_neighbours and edge_colour.
+  float depthOrNone(int x, int y) const {
+    const float d = g.depth.data[size_t(std::clamp(y, 0, h - 1)) * w + std::clamp(x, 0, w - 1)];
+    return std::isfinite(d) && d >= nearPlane && d <= farPlane && d < kBackgroundDepth ? d : kNoSurface;
+  }
+  static bool sameSurface(float a, float d, float c) {
+    return c < kNoSurface && (std::fabs(c - d) <= 0.02f * clFmin(c, d) ||
+                              (a < kNoSurface && predicts(a, 1.0f / a, d, 1.0f / d, c, 1.0f / c, 0.01f / c)));
+  }
+  // Whether every neighbour of (x, y) shows its surface; *nearer: another surface lies in front.
+  bool surfaceAround(int x, int y, bool& nearer) const {
+    const float d = depthOrNone(x, y);
+    bool all = true;
+    nearer = false;
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        if (dx == 0 && dy == 0) continue;
+        const float c = depthOrNone(x + dx, y + dy);
+        if (d < kNoSurface && sameSurface(depthOrNone(x - dx, y - dy), d, c)) continue;
+        all = false;
+        nearer = nearer || c < d;
+      }
+    return all;
+  }
+  vec3 edgeColor(int x, int y, float d, vec3 own) const {
+    vec3 lo(INFINITY), hi(-INFINITY);
+    for (int ring = 1; ring <= 2 && !(lo.x <= hi.x); ++ring)
+      for (int dy = -ring; dy <= ring; ++dy)
+        for (int dx = -ring; dx <= ring; dx += (dy == -ring || dy == ring) ? 1 : 2 * ring) {
+          const int qx = std::clamp(x + dx, 0, w - 1), qy = std::clamp(y + dy, 0, h - 1);
+          bool nearer;
+          if (!sameSurface(depthOrNone(x - dx, y - dy), d, depthOrNone(qx, qy)) || !surfaceAround(qx, qy, nearer))
+            continue;
+          const float* c = &g.color.data[(size_t(qy) * w + qx) * g.color.channels];
+          const vec3 q(sanitizeRadiance(c[0]), sanitizeRadiance(c[1]), sanitizeRadiance(c[2]));
+          lo = glm::min(lo, q);
+          hi = glm::max(hi, q);
+        }
+    return lo.x <= hi.x ? glm::min(glm::max(own, lo), hi) : own;
+  }
+
   SSRCL_NATIVE_CLONES void setupRow(int y) {
     for (int x = 0; x < w; ++x) {
       const size_t i = size_t(y) * w + x;
@@ -155,8 +206,11 @@ struct NativeMirrorTrace::Impl {
       float r = constantRoughness >= 0.0f ? constantRoughness : g.roughness.data[i];
       r = std::isnan(r) ? 1.0f : std::clamp(r, 0.0f, 1.0f);
       const float* c = &g.color.data[i * g.color.channels];
-      colors[i] = surface ? vec4(sanitizeRadiance(c[0]), sanitizeRadiance(c[1]), sanitizeRadiance(c[2]), r < 0.9f ? 0.0f : 1.0f)
-                          : vec4(0.0f);
+      vec3 color(sanitizeRadiance(c[0]), sanitizeRadiance(c[1]), sanitizeRadiance(c[2]));
+      bool nearer = false;
+      if (surface && edgeColors) surfaceAround(x, y, nearer);
+      if (nearer) color = edgeColor(x, y, d, color);
+      colors[i] = surface ? vec4(color, r < 0.9f ? 0.0f : 1.0f) : vec4(0.0f);
       float nearest = d;
       if (surface && normalOk)
         for (int corner = 0; corner < 4; ++corner) {

@@ -29,7 +29,7 @@
 // each pixel's F0 from the render's base_color / metallic AOVs where it has them, as `ssrcl trace`
 // does with them loaded; 0: without, specular colour alone),
 // hitroughness, spp, fullrays (fullRaysRoughness: smoother pixels get proportionally fewer rays),
-// reuse, denoise, prefilter, tracer, step, seed,
+// reuse, denoise, prefilter, edges (edge colours), tracer, step, seed,
 // stride, iterations, fade (the edge fade, a fraction of the smaller side), form (incident, the
 // default: our pass times E(F0 = 1) here; glossy-pass: the
 // pass `ssrcl trace --output-form glossy-pass` writes, compared with Cycles as it is, F0 from the
@@ -139,6 +139,8 @@ Config parseConfig(const std::string& spec) {
       s.denoise = value == "1";
     } else if (key == "prefilter") {
       s.prefilter = value == "1";
+    } else if (key == "edges") {
+      s.edgeColors = value == "1";
     } else if (key == "tracer") {
       s.tracer = value == "linear" ? ssrcl::Tracer::Linear : value == "dda" ? ssrcl::Tracer::DDA : ssrcl::Tracer::HiZ;
       if (s.tracer != ssrcl::Tracer::HiZ) s.maxIterations = ssrcl::qualityPreset("reference").maxIterations;
@@ -236,6 +238,18 @@ void writeComparison(const std::string& path, const ssrcl::test::CyclesReference
   std::ofstream f(path, std::ios::binary);
   f << "P6\n" << kPanels * w << " " << h << "\n255\n";
   f.write(reinterpret_cast<const char*>(rgb.data()), std::streamsize(rgb.size()));
+  // The first two panels unclipped, for per-pixel error analysis: ours (times E) and Cycles side by
+  // side as a little-endian PFM (rows bottom to top), 0 off the reflector.
+  std::vector<float> pfm(size_t(2 * w) * h * 3, 0.0f);
+  for (size_t k = 0; k < ref.pixels.size(); ++k)
+    for (int c = 0; c < 3; ++c) {
+      const int x = ref.pixels[k] % w, y = h - 1 - ref.pixels[k] / w;
+      pfm[(size_t(y) * 2 * w + x) * 3 + c] = float(ref.scale[k] * pass.data[pass.channels * size_t(ref.pixels[k]) + c]);
+      pfm[(size_t(y) * 2 * w + w + x) * 3 + c] = float(ref.cycles[3 * k + c]);
+    }
+  std::ofstream g(path.substr(0, path.size() - 4) + ".pfm", std::ios::binary);
+  g << "PF\n" << 2 * w << " " << h << "\n-1.0\n";
+  g.write(reinterpret_cast<const char*>(pfm.data()), std::streamsize(pfm.size() * sizeof(float)));
 }
 
 std::string backDepthPath(const std::string& scene) {
@@ -316,7 +330,9 @@ int main(int argc, char** argv) {
   app.add_flag("--noise", noise,
                "Also each pass's own noise: traced configurations again with the next seed; pass:DIR reads "
                "DIR/seed2/<scene>.exr");
-  app.add_option("--dump", dumpDir, "Write <scene>.<config index>.ppm: ours, Cycles and |difference| side by side");
+  app.add_option("--dump", dumpDir,
+                 "Write <scene>.<config index>.ppm: ours, Cycles and |difference| side by side (and .pfm: ours and "
+                 "Cycles, unclipped)");
   CLI11_PARSE(app, argc, argv);
 
   try {

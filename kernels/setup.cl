@@ -95,6 +95,72 @@ inline bool surface_depth(float d, float near_plane, float far_plane) {
   return isfinite(d) && d >= near_plane && d <= far_plane && d < SSRCL_BACKGROUND_DEPTH;
 }
 
+// Edge colours. Depth comes from one sample of a pixel, colour from all of them: a pixel beside a
+// nearer object's edge has the depth of the surface behind and the colour of both. A ray that hits
+// it reached that surface behind the object, so the colour it reads is held within the light of the
+// pixels wholly on that surface (per channel, their minimum to maximum). Beside a street lamp of 20
+// the wall's edge pixels held 1-7 against its 0.46, and rays passing behind the lamp to the wall
+// took that (puddles, docs/BENCHMARKS.md "Edge colours"). The nearer object's own edge pixels keep
+// their mix: a ray reaching one may as well have passed just beside it.
+
+// The pixel's depth, or SSRCL_NO_SURFACE, at (x, y) clamped to the frame (the frame's border shows
+// the same surface beyond it).
+inline float depth_or_none(__global const float* depth_in, int2 size, int x, int y, float near_plane,
+                           float far_plane) {
+  float d = depth_in[clamp(y, 0, size.y - 1) * size.x + clamp(x, 0, size.x - 1)];
+  return surface_depth(d, near_plane, far_plane) ? d : SSRCL_NO_SURFACE;
+}
+
+// Whether depth c, beside a pixel of depth d with a on its other side, shows d's surface: within 2%
+// of it, or on the line through a and d.
+inline bool same_surface(float a, float d, float c) {
+  return c < SSRCL_NO_SURFACE && (fabs(c - d) <= 0.02f * fmin(c, d) || (a < SSRCL_NO_SURFACE && predicts(a, d, c)));
+}
+
+// The eight neighbours of (x, y) that show its surface, as bits (bit 3 * (dy + 1) + dx + 1);
+// *nearer: whether another surface lies in front among them.
+inline int surface_neighbours(__global const float* depth_in, int2 size, int x, int y, float near_plane,
+                              float far_plane, bool* nearer) {
+  float at[3][3];
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i) at[j][i] = depth_or_none(depth_in, size, x + i - 1, y + j - 1, near_plane, far_plane);
+  int bits = 0;
+  *nearer = false;
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i) {
+      if (i == 1 && j == 1) continue;
+      if (at[1][1] < SSRCL_NO_SURFACE && same_surface(at[2 - j][2 - i], at[1][1], at[j][i]))
+        bits |= 1 << (3 * j + i);
+      else if (at[j][i] < at[1][1])
+        *nearer = true;
+    }
+  return bits;
+}
+#define SSRCL_ALL_NEIGHBOURS 0x1ef  // every bit but the centre's (4)
+
+// The colour a hit on edge pixel (x, y) of depth d reads: its own, held within the range of the
+// nearest pixels on its surface (its 3x3 neighbourhood, else the ring of 5x5 around it) that have no
+// other surface around them; its own where there are none.
+inline float3 edge_colour(__global const float* color_in, int color_channels, __global const float* depth_in,
+                          int2 size, int x, int y, float d, float3 own, float near_plane, float far_plane) {
+  float3 lo = (float3)(INFINITY), hi = (float3)(-INFINITY);
+  for (int ring = 1; ring <= 2 && !(lo.x <= hi.x); ++ring)
+    for (int dy = -ring; dy <= ring; ++dy)
+      for (int dx = -ring; dx <= ring; dx += (dy == -ring || dy == ring) ? 1 : 2 * ring) {
+        int qx = clamp(x + dx, 0, size.x - 1), qy = clamp(y + dy, 0, size.y - 1);
+        float a = depth_or_none(depth_in, size, x - dx, y - dy, near_plane, far_plane);
+        bool nearer;
+        if (!same_surface(a, d, depth_or_none(depth_in, size, qx, qy, near_plane, far_plane)) ||
+            surface_neighbours(depth_in, size, qx, qy, near_plane, far_plane, &nearer) != SSRCL_ALL_NEIGHBOURS)
+          continue;
+        __global const float* c = color_in + (size_t)(qy * size.x + qx) * color_channels;
+        float3 q = (float3)(sanitize_radiance(c[0]), sanitize_radiance(c[1]), sanitize_radiance(c[2]));
+        lo = fmin(lo, q);
+        hi = fmax(hi, q);
+      }
+  return lo.x <= hi.x ? clamp(own, lo, hi) : own;
+}
+
 // Mixed (edge) pixels. Cycles writes the Normal and Roughness passes as the mean over a pixel's
 // samples but Depth from its first sample alone (intern/cycles/kernel/film/data_passes.h), so a
 // pixel holding two surfaces has the depth of one and the mean of their normals: shorter than 1,
@@ -192,9 +258,14 @@ __kernel void setup(SetupParams params, __global const float* color_in,
     // plane the rays leaving a reflector cannot hit: averaged in, an emitter's light spread onto
     // them and no ray collected it (tabletop_cm, docs/BENCHMARKS.md "Speckle").
     __global const float* c = color_in + (size_t)i * color_channels;
-    color_out[i] = surface ? (float4)(sanitize_radiance(c[0]), sanitize_radiance(c[1]), sanitize_radiance(c[2]),
-                                      specular_pixel(r) ? 0.0f : 1.0f)
-                           : (float4)(0.0f);
+    float3 colour = (float3)(sanitize_radiance(c[0]), sanitize_radiance(c[1]), sanitize_radiance(c[2]));
+    if (surface && params.edge_colors) {
+      bool nearer;
+      surface_neighbours(depth_in, size, x, y, near_plane, far_plane, &nearer);
+      if (nearer)
+        colour = edge_colour(color_in, color_channels, depth_in, size, x, y, d, colour, near_plane, far_plane);
+    }
+    color_out[i] = surface ? (float4)(colour, specular_pixel(r) ? 0.0f : 1.0f) : (float4)(0.0f);
 
     float nearest = d;
     if (surface && normal_ok) {

@@ -90,6 +90,7 @@ typedef struct {
   float thickness_rel;          // constant thickness model: share of depth
   ssrcl_int adaptive_thickness;  // 1: kernels/thickness.cl finishes the thickness
   ssrcl_int fill_normals;       // 1: write fill_normal_out (an environment fill follows)
+  ssrcl_int edge_colors;        // 1: hits beside a nearer object's edge read the surface behind (edge_colour)
 } SetupParams;
 
 // kernels/thickness.cl

@@ -15,15 +15,10 @@
 // run (an object is no deeper than its narrow side is wide): silhouettes are thin, middles deep,
 // and a can is as deep at its top as at its middle.
 
-// Runs break at depth discontinuities, found from depth alone: shading normals (smoothed, bumped,
-// filtered over silhouettes) can differ from the geometry by tens of degrees. Along a plane
-// 1 / depth (perspective) or depth (orthographic) is affine in screen space, so on one surface a
-// pixel's depth is predicted, within 1%, by the two pixels on either side of it. Neighbours join
-// where their depths differ by under 2%, or where either side's line predicts the other.
-inline bool predicts(float d0, float d1, float d2) {
-  float tol = 0.01f;
-  return fabs(1.0f / d2 - (2.0f / d1 - 1.0f / d0)) <= tol / d2 || fabs(d2 - (2.0f * d1 - d0)) <= tol * d2;
-}
+// Runs break at depth discontinuities, found from depth alone (common.cl predicts): shading normals
+// (smoothed, bumped, filtered over silhouettes) can differ from the geometry by tens of degrees.
+// Neighbours join where their depths differ by under 2%, or where either side's line predicts the
+// other.
 
 inline bool joined(__global const float4* positions, int k, int length, int step, int base) {
   float da = positions[base + (k - 1) * step].w, db = positions[base + k * step].w;

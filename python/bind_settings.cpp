@@ -66,6 +66,7 @@ void bindSettings(py::module_& m) {
       .def_readwrite("mirrorRoughness", &TraceSettings::mirrorRoughness)
       .def_readwrite("reuseRadius", &TraceSettings::reuseRadius)
       .def_readwrite("prefilter", &TraceSettings::prefilter)
+      .def_readwrite("edgeColors", &TraceSettings::edgeColors)
       .def_readwrite("tracer", &TraceSettings::tracer)
       .def_readwrite("linearStepPixels", &TraceSettings::linearStepPixels)
       .def_readwrite("denoise", &TraceSettings::denoise)
@@ -74,8 +75,9 @@ void bindSettings(py::module_& m) {
       .def_readwrite("classifyWork", &TraceSettings::classifyWork)
       .def_readwrite("environmentRotation", &TraceSettings::environmentRotation)
       .def_readwrite("environmentIntensity", &TraceSettings::environmentIntensity)
-      .def("json", [](const TraceSettings& s) { return settingsJson(s); },
-           "Every field as JSON, as `ssrcl trace` records it in the output's ssrcl/settings attribute.")
+      .def(
+          "json", [](const TraceSettings& s) { return settingsJson(s); },
+          "Every field as JSON, as `ssrcl trace` records it in the output's ssrcl/settings attribute.")
       .def("__eq__", [](const TraceSettings& a, const TraceSettings& b) { return settingsJson(a) == settingsJson(b); })
       .def("__copy__", [](const TraceSettings& s) { return s; })
       .def("__deepcopy__", [](const TraceSettings& s, const py::dict&) { return s; })

@@ -89,7 +89,11 @@ const std::vector<SettingsOption>& settingsOptions() {
       {"--quality draft", {{"samplesPerPixel", 2}, {"traceStride", 2}, {"maxIterations", 64}}, true},
       {"--quality high", {{"samplesPerPixel", 16}}, true},
       {"--quality reference",
-       {{"tracer", "linear"}, {"samplesPerPixel", 256}, {"reuseRadius", 0}, {"maxIterations", 1 << 20}, {"denoise", false}},
+       {{"tracer", "linear"},
+        {"samplesPerPixel", 256},
+        {"reuseRadius", 0},
+        {"maxIterations", 1 << 20},
+        {"denoise", false}},
        true},
       {"--spp 7", {{"samplesPerPixel", 7}}, true},
       {"--full-rays-roughness 0.8", {{"fullRaysRoughness", 0.8}}, true},
@@ -104,6 +108,8 @@ const std::vector<SettingsOption>& settingsOptions() {
       // at 1 ray without reuse (reported in issue 17's notes; the glossy tests see no tint either).
       {"--no-prefilter", {{"prefilter", false}}, false},
       {"--prefilter", {{"prefilter", true}}, false, "--no-prefilter"},
+      {"--no-edge-colors", {{"edgeColors", false}}, true},
+      {"--edge-colors", {{"edgeColors", true}}, false, "--no-edge-colors"},
       {"--no-denoise", {{"denoise", false}}, true},  // the filter is on by default
       {"--denoise", {{"denoise", true}}, true, "--no-denoise"},
       {"--quality high --no-denoise", {{"denoise", false}}, true, "--quality high"},
@@ -117,8 +123,7 @@ const std::vector<SettingsOption>& settingsOptions() {
       {"--view-radiance-cap 5", {{"viewRadianceCap", 5.0}}, false},
       {"--environment {env}", json::object(), true},
       {"--environment {env} --environment-rotation 90", {{"environmentRotation", 90.0}}, true, "--environment {env}"},
-      {"--environment {env} --environment-intensity 2", {{"environmentIntensity", 2.0}}, true,
-       "--environment {env}"},
+      {"--environment {env} --environment-intensity 2", {{"environmentIntensity", 2.0}}, true, "--environment {env}"},
   };
   return options;
 }

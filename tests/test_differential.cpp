@@ -182,6 +182,7 @@ Image openClMirrorPass(Device& device, const RandomCase& rc, const AnalyticGBuff
   p.setCamera(rc.camera);
   p.settings().constantRoughness = 0.0f;
   p.settings().edgeFade = 0.0f;
+  p.settings().edgeColors = false;                         // a hit's colour names the pixel hit
   p.settings().thicknessModel = ThicknessModel::Constant;  // the reference implements this model
   p.settings().thicknessRelative = thicknessRelative;
   p.settings().tracer = tracer;

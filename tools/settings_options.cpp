@@ -22,6 +22,7 @@ TraceSettings SettingsOptions::resolve() const {
   apply(s.reuseRadius, reuseRadius);
   apply(s.seed, seed);
   apply(s.prefilter, prefilter);
+  apply(s.edgeColors, edgeColors);
   apply(s.denoise, denoise);
   if (roughnessMapping)
     s.roughnessMapping = *roughnessMapping == "linear" ? RoughnessMapping::Linear : RoughnessMapping::Squared;
@@ -73,6 +74,13 @@ void addSettingsOptions(CLI::App& cmd, SettingsOptions& o) {
       ->group(q);
   cmd.add_flag_callback(
          "--no-prefilter", [&o] { o.prefilter = false; }, "Rough hits read full-resolution colour")
+      ->group(q);
+  cmd.add_flag_callback(
+         "--edge-colors", [&o] { o.edgeColors = true; },
+         "Hits beside a nearer object's edge read the surface behind it, not the antialiased mix")
+      ->group(q);
+  cmd.add_flag_callback(
+         "--no-edge-colors", [&o] { o.edgeColors = false; }, "Every hit reads the colour pass as written")
       ->group(q);
   cmd.add_flag_callback(
          "--denoise", [&o] { o.denoise = true; }, "Edge-aware spatial filter after the resolve")

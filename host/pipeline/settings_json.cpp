@@ -42,6 +42,7 @@ std::string settingsJson(const TraceSettings& s) {
   j["mirrorRoughness"] = decimal(s.mirrorRoughness);
   j["reuseRadius"] = s.reuseRadius;
   j["prefilter"] = s.prefilter;
+  j["edgeColors"] = s.edgeColors;
   j["tracer"] = name(s.tracer);
   j["linearStepPixels"] = decimal(s.linearStepPixels);
   j["denoise"] = s.denoise;

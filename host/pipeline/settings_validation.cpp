@@ -25,8 +25,9 @@ auto fields(const TraceSettings& s) {
   return std::tie(s.thicknessModel, s.thicknessRelative, s.thicknessScale, s.thicknessMinRelative,
                   s.thicknessMaxRelative, s.maxIterations, s.maxRoughness, s.edgeFade, s.viewRadianceCap,
                   s.constantRoughness, s.glossyHitRoughness, s.samplesPerPixel, s.fullRaysRoughness, s.seed,
-                  s.roughnessMapping, s.mirrorRoughness, s.reuseRadius, s.prefilter, s.tracer, s.linearStepPixels,
-                  s.denoise, s.traceStride, s.countWork, s.classifyWork, s.environmentRotation, s.environmentIntensity);
+                  s.roughnessMapping, s.mirrorRoughness, s.reuseRadius, s.prefilter, s.edgeColors, s.tracer,
+                  s.linearStepPixels, s.denoise, s.traceStride, s.countWork, s.classifyWork, s.environmentRotation,
+                  s.environmentIntensity);
 }
 }  // namespace
 

@@ -65,6 +65,7 @@ SetupParams SetupStage::params(const FrameConstants& frame, const TraceSettings&
   p.classify = s.classifyWork;
   p.thickness_rel = s.thicknessRelative;
   p.adaptive_thickness = s.thicknessModel == ThicknessModel::Adaptive;
+  p.edge_colors = s.edgeColors;
   return p;
 }
 

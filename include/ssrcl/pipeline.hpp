@@ -105,6 +105,11 @@ struct TraceSettings {
   // by where the batch's hits land, which keeps the pass's mean that of full-resolution hits
   // (docs/BENCHMARKS.md, "Speckle").
   bool prefilter = true;
+  // A hit on a pixel beside a nearer object's edge reads the light of the surface behind it (held
+  // within the pixels wholly on that surface), not the colour pass's antialiased mix with the
+  // object's: rays that pass behind a lamp to the wall beside it took the lamp's light
+  // (docs/BENCHMARKS.md, "Edge colours"). False: every hit reads the colour pass as written.
+  bool edgeColors = true;
   Tracer tracer = Tracer::HiZ;
   float linearStepPixels = 0.5f;  // Tracer::Linear step along the ray's major screen axis
   // Edge-aware spatial filter after the resolve (the resolve then takes a quarter of each
