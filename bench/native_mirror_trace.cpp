@@ -144,29 +144,32 @@ struct NativeMirrorTrace::Impl {
     return depth > 0.0f && std::isfinite(depth) ? depth : -1.0f;
   }
 
-  // setup.cl depth_or_none, same_surface, surface_neighbours and edge_colour.
+  // setup.cl depth_or_none, joins, nearer_beside, inside_surface and edge_colour.
   float depthOrNone(int x, int y) const {
     const float d = g.depth.data[size_t(std::clamp(y, 0, h - 1)) * w + std::clamp(x, 0, w - 1)];
     return std::isfinite(d) && d >= nearPlane && d <= farPlane && d < kBackgroundDepth ? d : kNoSurface;
   }
-  static bool sameSurface(float a, float d, float c) {
-    return c < kNoSurface && (std::fabs(c - d) <= 0.02f * clFmin(c, d) ||
-                              (a < kNoSurface && predicts(a, 1.0f / a, d, 1.0f / d, c, 1.0f / c, 0.01f / c)));
+  bool joins(int x, int y, int dx, int dy, float d) const {
+    const float c = depthOrNone(x + dx, y + dy);
+    if (!(c < kNoSurface)) return false;
+    if (std::fabs(c - d) <= 0.02f * clFmin(c, d)) return true;
+    const float a = depthOrNone(x - dx, y - dy), e = depthOrNone(x + 2 * dx, y + 2 * dy);
+    return (a < kNoSurface && predicts(a, 1.0f / a, d, 1.0f / d, c, 1.0f / c, 0.01f / c)) ||
+           (e < kNoSurface && predicts(e, 1.0f / e, c, 1.0f / c, d, 1.0f / d, 0.01f / d));
   }
-  // Whether every neighbour of (x, y) shows its surface; *nearer: another surface lies in front.
-  bool surfaceAround(int x, int y, bool& nearer) const {
-    const float d = depthOrNone(x, y);
-    bool all = true;
-    nearer = false;
+  bool nearerBeside(int x, int y, float d) const {
     for (int dy = -1; dy <= 1; ++dy)
-      for (int dx = -1; dx <= 1; ++dx) {
-        if (dx == 0 && dy == 0) continue;
-        const float c = depthOrNone(x + dx, y + dy);
-        if (d < kNoSurface && sameSurface(depthOrNone(x - dx, y - dy), d, c)) continue;
-        all = false;
-        nearer = nearer || c < d;
-      }
-    return all;
+      for (int dx = -1; dx <= 1; ++dx)
+        if ((dx != 0 || dy != 0) && depthOrNone(x + dx, y + dy) < d && !joins(x, y, dx, dy, d)) return true;
+    return false;
+  }
+  bool insideSurface(int x, int y) const {
+    const float d = depthOrNone(x, y);
+    if (!(d < kNoSurface)) return false;
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx)
+        if ((dx != 0 || dy != 0) && !joins(x, y, dx, dy, d)) return false;
+    return true;
   }
   vec3 edgeColor(int x, int y, float d, vec3 own) const {
     vec3 lo(INFINITY), hi(-INFINITY);
@@ -174,9 +177,7 @@ struct NativeMirrorTrace::Impl {
       for (int dy = -ring; dy <= ring; ++dy)
         for (int dx = -ring; dx <= ring; dx += (dy == -ring || dy == ring) ? 1 : 2 * ring) {
           const int qx = std::clamp(x + dx, 0, w - 1), qy = std::clamp(y + dy, 0, h - 1);
-          bool nearer;
-          if (!sameSurface(depthOrNone(x - dx, y - dy), d, depthOrNone(qx, qy)) || !surfaceAround(qx, qy, nearer))
-            continue;
+          if (!joins(x, y, dx, dy, d) || !insideSurface(qx, qy)) continue;
           const float* c = &g.color.data[(size_t(qy) * w + qx) * g.color.channels];
           const vec3 q(sanitizeRadiance(c[0]), sanitizeRadiance(c[1]), sanitizeRadiance(c[2]));
           lo = glm::min(lo, q);
@@ -207,9 +208,7 @@ struct NativeMirrorTrace::Impl {
       r = std::isnan(r) ? 1.0f : std::clamp(r, 0.0f, 1.0f);
       const float* c = &g.color.data[i * g.color.channels];
       vec3 color(sanitizeRadiance(c[0]), sanitizeRadiance(c[1]), sanitizeRadiance(c[2]));
-      bool nearer = false;
-      if (surface && edgeColors) surfaceAround(x, y, nearer);
-      if (nearer) color = edgeColor(x, y, d, color);
+      if (surface && edgeColors && nearerBeside(x, y, d)) color = edgeColor(x, y, d, color);
       colors[i] = surface ? vec4(color, r < 0.9f ? 0.0f : 1.0f) : vec4(0.0f);
       float nearest = d;
       if (surface && normalOk)

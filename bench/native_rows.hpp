@@ -51,12 +51,12 @@ inline void reduceLevels(const std::vector<HzbLevel>& levels, int threads, const
 // OpenCL C's fmin and fmax (a NaN operand is ignored) as a compare and a select, which loops
 // vectorise: std::fmin and std::fmax are library calls unless NaNs are assumed away.
 inline float clFmin(float a, float b) { return a <= b || b != b ? a : b; }
+inline float clFmax(float a, float b) { return a >= b || b != b ? a : b; }
 
 // common.cl predicts, with 1 / d and 0.01 / d given (the same roundings: 2 / d1 is 2 (1 / d1)).
 inline bool predicts(float d0, float inv0, float d1, float inv1, float d2, float inv2, float tolInv2) {
   return std::fabs(inv2 - (2.0f * inv1 - inv0)) <= tolInv2 || std::fabs(d2 - (2.0f * d1 - d0)) <= 0.01f * d2;
 }
-inline float clFmax(float a, float b) { return a >= b || b != b ? a : b; }
 
 // Row y of pyramid level l (levels as host/pipeline/stage_support.cpp lays them out: each level
 // ceil(half) of the last) from the four texels under each of its texels, as kernels/common.cl

@@ -111,52 +111,58 @@ inline float depth_or_none(__global const float* depth_in, int2 size, int x, int
   return surface_depth(d, near_plane, far_plane) ? d : SSRCL_NO_SURFACE;
 }
 
-// Whether depth c, beside a pixel of depth d with a on its other side, shows d's surface: within 2%
-// of it, or on the line through a and d.
-inline bool same_surface(float a, float d, float c) {
-  return c < SSRCL_NO_SURFACE && (fabs(c - d) <= 0.02f * fmin(c, d) || (a < SSRCL_NO_SURFACE && predicts(a, d, c)));
+// Whether pixel p + o shows the surface of pixel p (depth d), as thickness.cl joins runs: its depth
+// within 2% of d, or on the line through p - o and p, or d on the line through p + 2o and p + o (a
+// surface's own slope, seen from its outline).
+inline bool joins(__global const float* depth_in, int2 size, int2 p, int2 o, float d, float near_plane,
+                  float far_plane) {
+  const float c = depth_or_none(depth_in, size, p.x + o.x, p.y + o.y, near_plane, far_plane);
+  if (!(c < SSRCL_NO_SURFACE)) return false;
+  if (fabs(c - d) <= 0.02f * fmin(c, d)) return true;
+  const float a = depth_or_none(depth_in, size, p.x - o.x, p.y - o.y, near_plane, far_plane);
+  const float e = depth_or_none(depth_in, size, p.x + 2 * o.x, p.y + 2 * o.y, near_plane, far_plane);
+  return (a < SSRCL_NO_SURFACE && predicts(a, d, c)) || (e < SSRCL_NO_SURFACE && predicts(e, c, d));
 }
 
-// The eight neighbours of (x, y) that show its surface, as bits (bit 3 * (dy + 1) + dx + 1);
-// *nearer: whether another surface lies in front among them.
-inline int surface_neighbours(__global const float* depth_in, int2 size, int x, int y, float near_plane,
-                              float far_plane, bool* nearer) {
-  float at[3][3];
-  for (int j = 0; j < 3; ++j)
-    for (int i = 0; i < 3; ++i) at[j][i] = depth_or_none(depth_in, size, x + i - 1, y + j - 1, near_plane, far_plane);
-  int bits = 0;
-  *nearer = false;
-  for (int j = 0; j < 3; ++j)
-    for (int i = 0; i < 3; ++i) {
-      if (i == 1 && j == 1) continue;
-      if (at[1][1] < SSRCL_NO_SURFACE && same_surface(at[2 - j][2 - i], at[1][1], at[j][i]))
-        bits |= 1 << (3 * j + i);
-      else if (at[j][i] < at[1][1])
-        *nearer = true;
-    }
-  return bits;
+// Whether a surface nearer than pixel p's (depth d) lies among its eight neighbours.
+inline bool nearer_beside(__global const float* depth_in, int2 size, int2 p, float d, float near_plane,
+                          float far_plane) {
+  for (int dy = -1; dy <= 1; ++dy)
+    for (int dx = -1; dx <= 1; ++dx)
+      if ((dx != 0 || dy != 0) &&
+          depth_or_none(depth_in, size, p.x + dx, p.y + dy, near_plane, far_plane) < d &&
+          !joins(depth_in, size, p, (int2)(dx, dy), d, near_plane, far_plane))
+        return true;
+  return false;
 }
-#define SSRCL_ALL_NEIGHBOURS 0x1ef  // every bit but the centre's (4)
 
-// The colour a hit on edge pixel (x, y) of depth d reads: its own, held within the range of the
-// nearest pixels on its surface (its 3x3 neighbourhood, else the ring of 5x5 around it) that have no
-// other surface around them; its own where there are none.
+// Whether every neighbour of pixel p shows its surface.
+inline bool inside_surface(__global const float* depth_in, int2 size, int2 p, float near_plane, float far_plane) {
+  const float d = depth_or_none(depth_in, size, p.x, p.y, near_plane, far_plane);
+  if (!(d < SSRCL_NO_SURFACE)) return false;
+  for (int dy = -1; dy <= 1; ++dy)
+    for (int dx = -1; dx <= 1; ++dx)
+      if ((dx != 0 || dy != 0) && !joins(depth_in, size, p, (int2)(dx, dy), d, near_plane, far_plane)) return false;
+  return true;
+}
+
+// The colour a hit on edge pixel p of depth d reads: its own, held within the range of the nearest
+// pixels on its surface (its 3x3 neighbourhood, else the ring of 5x5 around it) that have no other
+// surface around them; its own where there are none.
 inline float3 edge_colour(__global const float* color_in, int color_channels, __global const float* depth_in,
-                          int2 size, int x, int y, float d, float3 own, float near_plane, float far_plane) {
+                          int2 size, int2 p, float d, float3 own, float near_plane, float far_plane) {
   float3 lo = (float3)(INFINITY), hi = (float3)(-INFINITY);
   for (int ring = 1; ring <= 2 && !(lo.x <= hi.x); ++ring)
     for (int dy = -ring; dy <= ring; ++dy)
       for (int dx = -ring; dx <= ring; dx += (dy == -ring || dy == ring) ? 1 : 2 * ring) {
-        int qx = clamp(x + dx, 0, size.x - 1), qy = clamp(y + dy, 0, size.y - 1);
-        float a = depth_or_none(depth_in, size, x - dx, y - dy, near_plane, far_plane);
-        bool nearer;
-        if (!same_surface(a, d, depth_or_none(depth_in, size, qx, qy, near_plane, far_plane)) ||
-            surface_neighbours(depth_in, size, qx, qy, near_plane, far_plane, &nearer) != SSRCL_ALL_NEIGHBOURS)
+        const int2 q = clamp(p + (int2)(dx, dy), (int2)(0), size - 1);
+        if (!joins(depth_in, size, p, (int2)(dx, dy), d, near_plane, far_plane) ||
+            !inside_surface(depth_in, size, q, near_plane, far_plane))
           continue;
-        __global const float* c = color_in + (size_t)(qy * size.x + qx) * color_channels;
-        float3 q = (float3)(sanitize_radiance(c[0]), sanitize_radiance(c[1]), sanitize_radiance(c[2]));
-        lo = fmin(lo, q);
-        hi = fmax(hi, q);
+        __global const float* c = color_in + (size_t)(q.y * size.x + q.x) * color_channels;
+        const float3 v = (float3)(sanitize_radiance(c[0]), sanitize_radiance(c[1]), sanitize_radiance(c[2]));
+        lo = fmin(lo, v);
+        hi = fmax(hi, v);
       }
   return lo.x <= hi.x ? clamp(own, lo, hi) : own;
 }
@@ -259,12 +265,8 @@ __kernel void setup(SetupParams params, __global const float* color_in,
     // them and no ray collected it (tabletop_cm, docs/BENCHMARKS.md "Speckle").
     __global const float* c = color_in + (size_t)i * color_channels;
     float3 colour = (float3)(sanitize_radiance(c[0]), sanitize_radiance(c[1]), sanitize_radiance(c[2]));
-    if (surface && params.edge_colors) {
-      bool nearer;
-      surface_neighbours(depth_in, size, x, y, near_plane, far_plane, &nearer);
-      if (nearer)
-        colour = edge_colour(color_in, color_channels, depth_in, size, x, y, d, colour, near_plane, far_plane);
-    }
+    if (surface && params.edge_colors && nearer_beside(depth_in, size, (int2)(x, y), d, near_plane, far_plane))
+      colour = edge_colour(color_in, color_channels, depth_in, size, (int2)(x, y), d, colour, near_plane, far_plane);
     color_out[i] = surface ? (float4)(colour, specular_pixel(r) ? 0.0f : 1.0f) : (float4)(0.0f);
 
     float nearest = d;

@@ -410,6 +410,7 @@ Agreement agreeWithTruth(const Truth& rendered, const Camera& camera, Tracer tra
   TraceSettings s = qualityPreset("medium");
   s.mirrorRoughness = 1.0f;
   s.edgeFade = 0.0f;
+  s.edgeColors = false;  // the colour names the pixel hit
   s.tracer = tracer;
   // Hi-Z keeps the preset's iteration cap (512), 8192-pixel strips included. The DDA and linear
   // tracers visit every pixel, so 512 steps reach 512 pixels: on the strips below (hits 565 to
@@ -855,6 +856,7 @@ TEST(ExtremeResolutions, Full8192Frame) {
   TraceSettings s = qualityPreset("medium");
   s.maxRoughness = 0.5f;
   s.edgeFade = 0.0f;
+  s.edgeColors = false;  // the colour names the pixel hit
   const Result r = run(f, s);
   EXPECT_GT(r.times.tracedPixels, 0);
   EXPECT_LE(r.times.tracedPixels, (kBand1 - kBand0) * kSize);  // the band only: the rest is too rough

@@ -126,6 +126,12 @@ TEST_P(NativeRoofline, FrameStagesAgreeWithOpenCl) {
   EXPECT_GT(std::count_if(colors.begin() + pixels, colors.end(), [](glm::vec4 c) { return c.w > 0.0f && c.w < 1.0f; }),
             0);  // coarse texels mix weights 0 and 1
   EXPECT_EQ(differing(colors, device.colorPyramid(), 1e-5f), 0);
+  // Edge colours ran: beside the nearer objects' edges hits read other colours than as written.
+  ssrcl::TraceSettings asWritten = s;
+  asWritten.edgeColors = false;
+  ssrcl::bench::NativeMirrorTrace plain(mixed, camera, asWritten);
+  plain.runFrame(2);
+  EXPECT_GT(differing(colors, plain.colorPyramid(), 1e-5f), 0);
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, NativeRoofline, testing::Values("spheres_on_mirror", "mirror_wall", "half_sky"));
