@@ -149,13 +149,17 @@ struct NativeMirrorTrace::Impl {
     const float d = g.depth.data[size_t(std::clamp(y, 0, h - 1)) * w + std::clamp(x, 0, w - 1)];
     return std::isfinite(d) && d >= nearPlane && d <= farPlane && d < kBackgroundDepth ? d : kNoSurface;
   }
+  bool inFrame(int x, int y) const { return x >= 0 && y >= 0 && x < w && y < h; }
   bool joins(int x, int y, int dx, int dy, float d) const {
+    if (!inFrame(x + dx, y + dy)) return true;
     const float c = depthOrNone(x + dx, y + dy);
     if (!(c < kNoSurface)) return false;
     if (std::fabs(c - d) <= 0.02f * clFmin(c, d)) return true;
-    const float a = depthOrNone(x - dx, y - dy), e = depthOrNone(x + 2 * dx, y + 2 * dy);
-    return (a < kNoSurface && predicts(a, 1.0f / a, d, 1.0f / d, c, 1.0f / c, 0.01f / c)) ||
-           (e < kNoSurface && predicts(e, 1.0f / e, c, 1.0f / c, d, 1.0f / d, 0.01f / d));
+    const float a = inFrame(x - dx, y - dy) ? depthOrNone(x - dx, y - dy) : kNoSurface;
+    const float e = inFrame(x + 2 * dx, y + 2 * dy) ? depthOrNone(x + 2 * dx, y + 2 * dy) : kNoSurface;
+    if (a < kNoSurface && predicts(a, 1.0f / a, d, 1.0f / d, c, 1.0f / c, 0.01f / c)) return true;
+    if (e < kNoSurface && predicts(e, 1.0f / e, c, 1.0f / c, d, 1.0f / d, 0.01f / d)) return true;
+    return !(a < kNoSurface) && !(e < kNoSurface);
   }
   bool nearerBeside(int x, int y, float d) const {
     for (int dy = -1; dy <= 1; ++dy)
@@ -176,8 +180,8 @@ struct NativeMirrorTrace::Impl {
     for (int ring = 1; ring <= 2 && !(lo.x <= hi.x); ++ring)
       for (int dy = -ring; dy <= ring; ++dy)
         for (int dx = -ring; dx <= ring; dx += (dy == -ring || dy == ring) ? 1 : 2 * ring) {
-          const int qx = std::clamp(x + dx, 0, w - 1), qy = std::clamp(y + dy, 0, h - 1);
-          if (!joins(x, y, dx, dy, d) || !insideSurface(qx, qy)) continue;
+          const int qx = x + dx, qy = y + dy;
+          if (!inFrame(qx, qy) || !joins(x, y, dx, dy, d) || !insideSurface(qx, qy)) continue;
           const float* c = &g.color.data[(size_t(qy) * w + qx) * g.color.channels];
           const vec3 q(sanitizeRadiance(c[0]), sanitizeRadiance(c[1]), sanitizeRadiance(c[2]));
           lo = glm::min(lo, q);

@@ -125,8 +125,8 @@ inline int2 tile_pixel(__global const int* tile_list, int tiles_x) {
   (float8)(a[0].field, a[1].field, a[2].field, a[3].field, a[4].field, a[5].field, a[6].field, a[7].field)
 
 // Along a plane 1 / depth (perspective) or depth (orthographic) is affine in screen space, so on
-// one surface a pixel's depth d2 is predicted, within 1%, by the two pixels before it (d0, d1) on
-// its row, column or diagonal.
+// one surface a pixel's depth d2 is predicted, within 1%, by two pixels before it (d0, d1) on a
+// line through it, as far apart as it is from d1.
 inline bool predicts(float d0, float d1, float d2) {
   float tol = 0.01f;
   return fabs(1.0f / d2 - (2.0f / d1 - 1.0f / d0)) <= tol / d2 || fabs(d2 - (2.0f * d1 - d0)) <= tol * d2;

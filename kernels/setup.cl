@@ -103,25 +103,33 @@ inline bool surface_depth(float d, float near_plane, float far_plane) {
 // took that (puddles, docs/BENCHMARKS.md "Edge colours"). The nearer object's own edge pixels keep
 // their mix: a ray reaching one may as well have passed just beside it.
 
-// The pixel's depth, or SSRCL_NO_SURFACE, at (x, y) clamped to the frame (the frame's border shows
-// the same surface beyond it).
+// The depth of pixel (x, y), held in the frame, or SSRCL_NO_SURFACE.
 inline float depth_or_none(__global const float* depth_in, int2 size, int x, int y, float near_plane,
                            float far_plane) {
   float d = depth_in[clamp(y, 0, size.y - 1) * size.x + clamp(x, 0, size.x - 1)];
   return surface_depth(d, near_plane, far_plane) ? d : SSRCL_NO_SURFACE;
 }
 
+inline bool in_frame(int2 p, int2 size) { return all(p >= 0) && all(p < size); }
+
 // Whether pixel p + o shows the surface of pixel p (depth d), as thickness.cl joins runs: its depth
 // within 2% of d, or on the line through p - o and p, or d on the line through p + 2o and p + o (a
-// surface's own slope, seen from its outline).
+// surface's own slope, seen from its outline). Past the frame's border the same surface goes on;
+// where neither line has a surface in the frame to go through, nothing tells them apart either.
 inline bool joins(__global const float* depth_in, int2 size, int2 p, int2 o, float d, float near_plane,
                   float far_plane) {
+  if (!in_frame(p + o, size)) return true;
   const float c = depth_or_none(depth_in, size, p.x + o.x, p.y + o.y, near_plane, far_plane);
   if (!(c < SSRCL_NO_SURFACE)) return false;
   if (fabs(c - d) <= 0.02f * fmin(c, d)) return true;
-  const float a = depth_or_none(depth_in, size, p.x - o.x, p.y - o.y, near_plane, far_plane);
-  const float e = depth_or_none(depth_in, size, p.x + 2 * o.x, p.y + 2 * o.y, near_plane, far_plane);
-  return (a < SSRCL_NO_SURFACE && predicts(a, d, c)) || (e < SSRCL_NO_SURFACE && predicts(e, c, d));
+  const float a = in_frame(p - o, size) ? depth_or_none(depth_in, size, p.x - o.x, p.y - o.y, near_plane, far_plane)
+                                        : SSRCL_NO_SURFACE;
+  const float e = in_frame(p + 2 * o, size)
+                      ? depth_or_none(depth_in, size, p.x + 2 * o.x, p.y + 2 * o.y, near_plane, far_plane)
+                      : SSRCL_NO_SURFACE;
+  if (a < SSRCL_NO_SURFACE && predicts(a, d, c)) return true;
+  if (e < SSRCL_NO_SURFACE && predicts(e, c, d)) return true;
+  return !(a < SSRCL_NO_SURFACE) && !(e < SSRCL_NO_SURFACE);
 }
 
 // Whether a surface nearer than pixel p's (depth d) lies among its eight neighbours.
@@ -155,8 +163,8 @@ inline float3 edge_colour(__global const float* color_in, int color_channels, __
   for (int ring = 1; ring <= 2 && !(lo.x <= hi.x); ++ring)
     for (int dy = -ring; dy <= ring; ++dy)
       for (int dx = -ring; dx <= ring; dx += (dy == -ring || dy == ring) ? 1 : 2 * ring) {
-        const int2 q = clamp(p + (int2)(dx, dy), (int2)(0), size - 1);
-        if (!joins(depth_in, size, p, (int2)(dx, dy), d, near_plane, far_plane) ||
+        const int2 q = p + (int2)(dx, dy);
+        if (!in_frame(q, size) || !joins(depth_in, size, p, (int2)(dx, dy), d, near_plane, far_plane) ||
             !inside_surface(depth_in, size, q, near_plane, far_plane))
           continue;
         __global const float* c = color_in + (size_t)(q.y * size.x + q.x) * color_channels;

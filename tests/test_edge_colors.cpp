@@ -5,8 +5,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <glm/vec4.hpp>
 #include <iostream>
+#include <vector>
 
+#include "device_frame_stages.hpp"
 #include "scenes/analytic_scene.hpp"
 #include "ssrcl/pipeline.hpp"
 #include "support/test_device.hpp"
@@ -102,6 +105,88 @@ TEST(EdgeColors, MirrorRaysBesideALampSeeTheWallBehindIt) {
   EXPECT_GT(off.bright, 20);
   EXPECT_LE(on.bright, off.bright / 2);
   EXPECT_LT(on.sum, 0.75 * off.sum);
+}
+
+// What hits read (the colour pyramid's level 0, setup's output) of `g` with `color`.
+std::vector<glm::vec4> hitColors(const AnalyticGBuffer& g, const Image& color, const Camera& camera, bool edgeColors) {
+  GBuffer frame = g;
+  frame.color = color;
+  TraceSettings s = qualityPreset("medium");
+  s.edgeColors = edgeColors;
+  bench::DeviceFrameStages stages(testDevice(), frame, camera, s);
+  stages.run();
+  std::vector<glm::vec4> level0 = stages.colorPyramid();
+  level0.resize(size_t(camera.width) * camera.height);
+  return level0;
+}
+
+// Whether pixel (x, y) has a pixel showing primitive `k` (-1: the sky) among its eight neighbours.
+bool beside(const AnalyticGBuffer& g, int x, int y, int k) {
+  for (int dy = -1; dy <= 1; ++dy)
+    for (int dx = -1; dx <= 1; ++dx) {
+      const int qx = x + dx, qy = y + dy;
+      if ((dx || dy) && qx >= 0 && qy >= 0 && qx < g.width && qy < g.height && g.hit(qx, qy).primitive == k)
+        return true;
+    }
+  return false;
+}
+
+// Which pixels change: the wall's beside the nearer lamp and floor, to the wall's light exactly; not
+// the lamp's own edge, whose mix a ray passing just beside it may take.
+TEST(EdgeColors, TheSurfaceBehindAnEdgeTakesItsOwnLightAndTheNearerObjectKeepsItsMix) {
+  const Scene scene = lampBeforeWall();
+  const Camera camera = makeCamera(scene.view, 320, 180);
+  const AnalyticGBuffer g = renderGBuffer(scene, camera);
+  const Image color = antialiasedColor(scene, camera);
+  const std::vector<glm::vec4> on = hitColors(g, color, camera, true), off = hitColors(g, color, camera, false);
+  int wallBesideLamp = 0, mixedWall = 0, lampEdge = 0, mixedLamp = 0;
+  for (int y = 0; y < camera.height; ++y)
+    for (int x = 0; x < camera.width; ++x) {
+      const size_t i = size_t(y) * camera.width + x;
+      const int k = g.hit(x, y).primitive;
+      if (k == 1 && (beside(g, x, y, 2) || beside(g, x, y, 0))) {  // the wall beside a nearer surface: its light
+        EXPECT_FLOAT_EQ(on[i].x, float(kWall)) << x << "," << y;
+        if (beside(g, x, y, 2)) {
+          ++wallBesideLamp;
+          mixedWall += off[i].x > 2 * kWall;
+        }
+      } else if (k == 1) {  // elsewhere (beside the sky too) as written
+        EXPECT_EQ(on[i], off[i]) << x << "," << y;
+      } else if (k == 2 && (beside(g, x, y, 1) || beside(g, x, y, 0))) {  // the lamp's edge: as written
+        ++lampEdge;
+        EXPECT_EQ(on[i], off[i]) << x << "," << y;
+        mixedLamp += off[i].x < 0.9 * kLamp;
+      }
+    }
+  std::cout << wallBesideLamp << " wall pixels beside the lamp (" << mixedWall << " holding its light as written), "
+            << lampEdge << " of the lamp's edge (" << mixedLamp << " mixed)\n";
+  EXPECT_GT(mixedWall, 20);
+  EXPECT_GT(mixedLamp, 20);
+}
+
+// A surface's own steep slope is no nearer object: a textured floor's last rows before the sky,
+// whose depth grows by several percent a row, keep their colour (mixed with the sky's) as written.
+TEST(EdgeColors, AFloorsOutlineAgainstTheSkyKeepsItsColour) {
+  Scene scene;
+  scene.name = "floor_to_sky";
+  scene.primitives = {rectangle("floor", dvec3(0.0), dvec3(0, 1, 0), 12, 12, Material{dvec3(0.7, 0.6, 0.5)})};
+  scene.view.eye = dvec3(0, 0.6, 8);
+  scene.view.target = dvec3(0, 0.2, -12);
+  const Camera camera = makeCamera(scene.view, 240, 135);
+  const AnalyticGBuffer g = renderGBuffer(scene, camera);
+  const Image color = antialiasedColor(scene, camera);
+  const std::vector<glm::vec4> on = hitColors(g, color, camera, true), off = hitColors(g, color, camera, false);
+  int outline = 0, steep = 0;
+  for (int y = 1; y + 1 < camera.height; ++y)
+    for (int x = 0; x < camera.width; ++x) {
+      if (g.hit(x, y).primitive != 0 || !beside(g, x, y, -1)) continue;
+      const size_t i = size_t(y) * camera.width + x;
+      ++outline;
+      steep += g.hit(x, y + 1).primitive == 0 && g.depth.at(x, y + 1, 0) < 0.98f * g.depth.at(x, y, 0);
+      EXPECT_EQ(on[i], off[i]) << x << "," << y;
+    }
+  std::cout << outline << " floor pixels beside the sky, " << steep << " of them over 2% deeper than the row in\n";
+  EXPECT_GT(steep, 100);
 }
 
 }  // namespace
