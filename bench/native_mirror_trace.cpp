@@ -144,10 +144,18 @@ struct NativeMirrorTrace::Impl {
     return depth > 0.0f && std::isfinite(depth) ? depth : -1.0f;
   }
 
+  // setup.cl surface_depth.
+  bool surfaceDepth(float d) const {
+    return std::isfinite(d) && d >= nearPlane && d <= farPlane && d < kBackgroundDepth;
+  }
   // setup.cl depth_or_none, joins, nearer_beside, inside_surface and edge_colour.
   float depthOrNone(int x, int y) const {
     const float d = g.depth.data[size_t(std::clamp(y, 0, h - 1)) * w + std::clamp(x, 0, w - 1)];
-    return std::isfinite(d) && d >= nearPlane && d <= farPlane && d < kBackgroundDepth ? d : kNoSurface;
+    return surfaceDepth(d) ? d : kNoSurface;
+  }
+  vec3 sanitizedColor(size_t i) const {
+    const float* c = &g.color.data[i * g.color.channels];
+    return {sanitizeRadiance(c[0]), sanitizeRadiance(c[1]), sanitizeRadiance(c[2])};
   }
   bool inFrame(int x, int y) const { return x >= 0 && y >= 0 && x < w && y < h; }
   bool joins(int x, int y, int dx, int dy, float d) const {
@@ -182,8 +190,7 @@ struct NativeMirrorTrace::Impl {
         for (int dx = -ring; dx <= ring; dx += (dy == -ring || dy == ring) ? 1 : 2 * ring) {
           const int qx = x + dx, qy = y + dy;
           if (!inFrame(qx, qy) || !joins(x, y, dx, dy, d) || !insideSurface(qx, qy)) continue;
-          const float* c = &g.color.data[(size_t(qy) * w + qx) * g.color.channels];
-          const vec3 q(sanitizeRadiance(c[0]), sanitizeRadiance(c[1]), sanitizeRadiance(c[2]));
+          const vec3 q = sanitizedColor(size_t(qy) * w + qx);
           lo = glm::min(lo, q);
           hi = glm::max(hi, q);
         }
@@ -199,8 +206,7 @@ struct NativeMirrorTrace::Impl {
       const vec3 step = v * (-1.0f / v.z);
       const vec3 viewDir = glm::normalize(step);
       const vec3 p = origin + (d + origin.z) * step;
-      const bool surface = std::isfinite(d) && d >= nearPlane && d <= farPlane && d < kBackgroundDepth &&
-                           std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
+      const bool surface = surfaceDepth(d) && std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
       const vec3 nw(g.normal.data[3 * i], g.normal.data[3 * i + 1], g.normal.data[3 * i + 2]);
       const float scale = std::max(std::fabs(nw.x), std::max(std::fabs(nw.y), std::fabs(nw.z)));
       bool normalOk = std::isfinite(scale) && scale > 0.0f;
@@ -210,8 +216,7 @@ struct NativeMirrorTrace::Impl {
       nv = normalOk ? nv / len : vec3(0, 0, 1);
       float r = constantRoughness >= 0.0f ? constantRoughness : g.roughness.data[i];
       r = std::isnan(r) ? 1.0f : std::clamp(r, 0.0f, 1.0f);
-      const float* c = &g.color.data[i * g.color.channels];
-      vec3 color(sanitizeRadiance(c[0]), sanitizeRadiance(c[1]), sanitizeRadiance(c[2]));
+      vec3 color = sanitizedColor(i);
       if (surface && edgeColors && nearerBeside(x, y, d)) color = edgeColor(x, y, d, color);
       colors[i] = surface ? vec4(color, r < 0.9f ? 0.0f : 1.0f) : vec4(0.0f);
       float nearest = d;

@@ -167,8 +167,7 @@ inline float3 edge_colour(__global const float* color_in, int color_channels, __
         if (!in_frame(q, size) || !joins(depth_in, size, p, (int2)(dx, dy), d, near_plane, far_plane) ||
             !inside_surface(depth_in, size, q, near_plane, far_plane))
           continue;
-        __global const float* c = color_in + (size_t)(q.y * size.x + q.x) * color_channels;
-        const float3 v = (float3)(sanitize_radiance(c[0]), sanitize_radiance(c[1]), sanitize_radiance(c[2]));
+        const float3 v = sanitize_radiance3(vload3(0, color_in + (size_t)(q.y * size.x + q.x) * color_channels));
         lo = fmin(lo, v);
         hi = fmax(hi, v);
       }
@@ -271,8 +270,7 @@ __kernel void setup(SetupParams params, __global const float* color_in,
     // and on specular pixels, whose screen colour is what they reflect toward the camera and whose
     // plane the rays leaving a reflector cannot hit: averaged in, an emitter's light spread onto
     // them and no ray collected it (tabletop_cm, docs/BENCHMARKS.md "Speckle").
-    __global const float* c = color_in + (size_t)i * color_channels;
-    float3 colour = (float3)(sanitize_radiance(c[0]), sanitize_radiance(c[1]), sanitize_radiance(c[2]));
+    float3 colour = sanitize_radiance3(vload3(0, color_in + (size_t)i * color_channels));
     if (surface && params.edge_colors && nearer_beside(depth_in, size, (int2)(x, y), d, near_plane, far_plane))
       colour = edge_colour(color_in, color_channels, depth_in, size, (int2)(x, y), d, colour, near_plane, far_plane);
     color_out[i] = surface ? (float4)(colour, specular_pixel(r) ? 0.0f : 1.0f) : (float4)(0.0f);

@@ -56,19 +56,30 @@ Image antialiasedColor(const Scene& scene, const Camera& camera) {
   return color;
 }
 
+// The lamp scene rendered once for every test: its camera, G-buffer, exact reflection and colour.
+struct LampFrame {
+  Scene scene = lampBeforeWall();
+  Camera camera = makeCamera(scene.view, 320, 180);
+  AnalyticGBuffer g = renderGBuffer(scene, camera);
+  MirrorTruth truth = exactMirrorReflection(scene, camera, g);
+  Image color = antialiasedColor(scene, camera);
+};
+const LampFrame& lampFrame() {
+  static const LampFrame frame;
+  return frame;
+}
+
 struct WallError {
   int pixels = 0, bright = 0;  // floor pixels whose exact reflection is the wall; of them, those read over 2x it
   double sum = 0;              // of |pass - wall|
 };
 
 WallError mirrorPassOnWall(bool edgeColors) {
-  const Scene scene = lampBeforeWall();
-  const Camera camera = makeCamera(scene.view, 320, 180);
-  const AnalyticGBuffer g = renderGBuffer(scene, camera);
-  const MirrorTruth truth = exactMirrorReflection(scene, camera, g);
-  const Image color = antialiasedColor(scene, camera);  // read at execute
+  const LampFrame& f = lampFrame();
+  const Camera& camera = f.camera;
+  const AnalyticGBuffer& g = f.g;
   Pipeline p(testDevice());
-  p.setImage("color", color);
+  p.setImage("color", f.color);
   p.setImage("depth", g.depth);
   p.setImage("normal", g.normal);
   p.setImage("roughness", g.roughness);
@@ -80,7 +91,7 @@ WallError mirrorPassOnWall(bool edgeColors) {
   WallError e;
   for (int y = 0; y < camera.height; ++y)
     for (int x = 0; x < camera.width; ++x) {
-      const MirrorSample& s = truth.at(x, y);
+      const MirrorSample& s = f.truth.at(x, y);
       const float a = pass.at(x, y, 3);
       if (g.hit(x, y).primitive != 0 || s.cls != ReflectionClass::Visible || s.hit.primitive != 1 || !(a > 0.5f))
         continue;
@@ -134,11 +145,10 @@ bool beside(const AnalyticGBuffer& g, int x, int y, int k) {
 // Which pixels change: the wall's beside the nearer lamp and floor, to the wall's light exactly; not
 // the lamp's own edge, whose mix a ray passing just beside it may take.
 TEST(EdgeColors, TheSurfaceBehindAnEdgeTakesItsOwnLightAndTheNearerObjectKeepsItsMix) {
-  const Scene scene = lampBeforeWall();
-  const Camera camera = makeCamera(scene.view, 320, 180);
-  const AnalyticGBuffer g = renderGBuffer(scene, camera);
-  const Image color = antialiasedColor(scene, camera);
-  const std::vector<glm::vec4> on = hitColors(g, color, camera, true), off = hitColors(g, color, camera, false);
+  const LampFrame& f = lampFrame();
+  const Camera& camera = f.camera;
+  const AnalyticGBuffer& g = f.g;
+  const std::vector<glm::vec4> on = hitColors(g, f.color, camera, true), off = hitColors(g, f.color, camera, false);
   int wallBesideLamp = 0, mixedWall = 0, lampEdge = 0, mixedLamp = 0;
   for (int y = 0; y < camera.height; ++y)
     for (int x = 0; x < camera.width; ++x) {
