@@ -1,17 +1,9 @@
 #include "host_backed_buffer.hpp"
 
 #include <cstdint>
-#include <cstdlib>
-#if defined(__linux__)
-#include <sys/mman.h>
-#endif
 
 namespace ssrcl::detail {
 namespace {
-
-constexpr size_t hugePage = size_t(2) << 20;
-
-void CL_CALLBACK freeHostMemory(cl_mem, void* memory) { std::free(memory); }
 
 // What host memory a buffer can be on this device: aligned as its buffers (0: none can).
 size_t hostAlignment(Device::Impl& device) {
@@ -29,24 +21,8 @@ bool sharesHostMemory(Device::Impl& device) {
 }
 
 cl::Buffer newDeviceBuffer(Device::Impl& device, cl_mem_flags flags, size_t bytes, void* host) {
-  if (host && aligned(host, hostAlignment(device))) return cl::Buffer(device.context, flags | CL_MEM_USE_HOST_PTR, bytes, host);
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
-  // Each first touch of a 4 KiB page is a fault: a 1080p frame's buffers took some 190,000, 13%
-  // of the process's CPU on a virtual machine (perf: exc_page_fault under the kernels, the
-  // driver's fills and copies). One fault a 2 MiB page instead: docs/BENCHMARKS.md "Huge pages".
-  if (bytes >= hugePage && sharesHostMemory(device)) {
-    const size_t rounded = (bytes + hugePage - 1) / hugePage * hugePage;
-    if (void* memory = std::aligned_alloc(hugePage, rounded)) {
-      madvise(memory, rounded, MADV_HUGEPAGE);  // advice: where refused, plain pages serve
-      cl_int status = CL_SUCCESS;
-      cl_mem mem = clCreateBuffer(device.context(), flags | CL_MEM_USE_HOST_PTR, bytes, memory, &status);
-      if (status == CL_SUCCESS && clSetMemObjectDestructorCallback(mem, freeHostMemory, memory) == CL_SUCCESS)
-        return cl::Buffer(mem);  // takes the reference clCreateBuffer gave
-      if (mem) clReleaseMemObject(mem);
-      std::free(memory);
-    }
-  }
-#endif
+  if (host && aligned(host, hostAlignment(device)))
+    return cl::Buffer(device.context, flags | CL_MEM_USE_HOST_PTR, bytes, host);
   return cl::Buffer(device.context, flags, bytes);
 }
 

@@ -1,6 +1,6 @@
 #pragma once
-// Device buffers whose memory the library allocates itself where the device's memory is the
-// host's (CPU devices): large ones on transparent huge pages.
+// Device buffers over the caller's own memory where the device's memory is the host's (CPU
+// devices): inputs read and outputs written where they lie, without copies into fresh memory.
 #include <cstddef>
 
 #include "device_impl.hpp"
@@ -8,13 +8,10 @@
 
 namespace ssrcl::detail {
 
-// A buffer of `bytes` with `flags`. On a device sharing the host's memory, buffers of a huge
-// page and up are allocated on 2 MiB boundaries, marked for transparent huge pages and handed to
-// the driver as its memory (CL_MEM_USE_HOST_PTR); freed when the driver releases the buffer.
-// Elsewhere, and for smaller buffers, the driver allocates as usual. With `host` (the caller's
-// memory, which must outlive the buffer), the buffer is that memory where the device shares the
-// host's and it is aligned as the device's buffers: what kernels write there is the caller's
-// without a copy (after a map, as OpenCL asks).
+// A buffer of `bytes` with `flags`, the driver's own memory. With `host` (the caller's memory,
+// which must outlive the buffer), the buffer is that memory where the device shares the host's
+// and it is aligned as the device's buffers: what kernels write there is the caller's without a
+// copy (after a map, as OpenCL asks).
 cl::Buffer newDeviceBuffer(Device::Impl& device, cl_mem_flags flags, size_t bytes, void* host = nullptr);
 
 // Whether `device` works in the host's memory (a CPU device): its buffers can be host memory.
@@ -22,8 +19,8 @@ bool sharesHostMemory(Device::Impl& device);
 
 // One of the frame's input images as kernels read it. Where the device shares the host's memory,
 // a buffer over the caller's pixels themselves: no copy and no fresh memory, whose first touch is
-// what a 1080p frame's 75 MB of inputs cost on virtual machines (docs/BENCHMARKS.md "Huge
-// pages"). Elsewhere, a buffer of the device's own, written each frame.
+// what a 1080p frame's 75 MB of inputs cost on virtual machines (docs/BENCHMARKS.md "Fresh
+// memory"). Elsewhere, a buffer of the device's own, written each frame.
 class HostInput {
  public:
   // Plans the device's own buffer of `bytes`, where one is needed.
