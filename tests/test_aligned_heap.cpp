@@ -1,6 +1,7 @@
 // The CLI's heap (tools/aligned_heap.cpp, linked into this test as into `ssrcl`): blocks of
-// 2 MiB and up start on page boundaries, whatever form of new asked for them; smaller ones come
-// from malloc as before; every block holds what is written to it and is given back by delete.
+// 2 MiB and up start on page boundaries, whatever unaligned form of new asked for them; smaller
+// ones come from malloc as before; every block holds what is written to it and is given back by
+// delete.
 #include <gtest/gtest.h>
 
 #include <array>

@@ -8,10 +8,11 @@
 
 namespace ssrcl::detail {
 
-// A buffer of `bytes` with `flags`, the driver's own memory. With `host` (the caller's memory,
-// which must outlive the buffer), the buffer is that memory where the device shares the host's
-// and it is aligned as the device's buffers: what kernels write there is the caller's without a
-// copy (after a map, as OpenCL asks).
+// A buffer of `bytes` with `flags`, the driver's own memory (the library's own, on huge pages,
+// cost more system time than it saved: docs/BENCHMARKS.md "Huge pages"). With `host` (the
+// caller's memory, which must outlive the buffer), the buffer is that memory where the device
+// shares the host's and it is aligned as the device's buffers: what kernels write there is the
+// caller's without a copy (after a map, as OpenCL asks).
 cl::Buffer newDeviceBuffer(Device::Impl& device, cl_mem_flags flags, size_t bytes, void* host = nullptr);
 
 // Whether `device` works in the host's memory (a CPU device): its buffers can be host memory.
