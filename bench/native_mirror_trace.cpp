@@ -150,7 +150,8 @@ struct NativeMirrorTrace::Impl {
   }
   // setup.cl depth_or_none, joins, nearer_beside, inside_surface and edge_colour.
   float depthOrNone(int x, int y) const {
-    const float d = g.depth.data[size_t(std::clamp(y, 0, h - 1)) * w + std::clamp(x, 0, w - 1)];
+    if (!inFrame(x, y)) return kNoSurface;
+    const float d = g.depth.data[size_t(y) * w + x];
     return surfaceDepth(d) ? d : kNoSurface;
   }
   vec3 sanitizedColor(size_t i) const {
@@ -163,8 +164,7 @@ struct NativeMirrorTrace::Impl {
     const float c = depthOrNone(x + dx, y + dy);
     if (!(c < kNoSurface)) return false;
     if (std::fabs(c - d) <= 0.02f * clFmin(c, d)) return true;
-    const float a = inFrame(x - dx, y - dy) ? depthOrNone(x - dx, y - dy) : kNoSurface;
-    const float e = inFrame(x + 2 * dx, y + 2 * dy) ? depthOrNone(x + 2 * dx, y + 2 * dy) : kNoSurface;
+    const float a = depthOrNone(x - dx, y - dy), e = depthOrNone(x + 2 * dx, y + 2 * dy);
     if (a < kNoSurface && predicts(a, 1.0f / a, d, 1.0f / d, c, 1.0f / c, 0.01f / c)) return true;
     if (e < kNoSurface && predicts(e, 1.0f / e, c, 1.0f / c, d, 1.0f / d, 0.01f / d)) return true;
     return !(a < kNoSurface) && !(e < kNoSurface);

@@ -103,14 +103,15 @@ inline bool surface_depth(float d, float near_plane, float far_plane) {
 // took that (puddles, docs/BENCHMARKS.md "Edge colours"). The nearer object's own edge pixels keep
 // their mix: a ray reaching one may as well have passed just beside it.
 
-// The depth of pixel (x, y), held in the frame, or SSRCL_NO_SURFACE.
+inline bool in_frame(int2 p, int2 size) { return all(p >= 0) && all(p < size); }
+
+// The depth of pixel (x, y), or SSRCL_NO_SURFACE where it shows none or lies outside the frame.
 inline float depth_or_none(__global const float* depth_in, int2 size, int x, int y, float near_plane,
                            float far_plane) {
-  float d = depth_in[clamp(y, 0, size.y - 1) * size.x + clamp(x, 0, size.x - 1)];
+  if (!in_frame((int2)(x, y), size)) return SSRCL_NO_SURFACE;
+  float d = depth_in[y * size.x + x];
   return surface_depth(d, near_plane, far_plane) ? d : SSRCL_NO_SURFACE;
 }
-
-inline bool in_frame(int2 p, int2 size) { return all(p >= 0) && all(p < size); }
 
 // Whether pixel p + o shows the surface of pixel p (depth d), as thickness.cl joins runs: its depth
 // within 2% of d, or on the line through p - o and p, or d on the line through p + 2o and p + o (a
@@ -122,11 +123,8 @@ inline bool joins(__global const float* depth_in, int2 size, int2 p, int2 o, flo
   const float c = depth_or_none(depth_in, size, p.x + o.x, p.y + o.y, near_plane, far_plane);
   if (!(c < SSRCL_NO_SURFACE)) return false;
   if (fabs(c - d) <= 0.02f * fmin(c, d)) return true;
-  const float a = in_frame(p - o, size) ? depth_or_none(depth_in, size, p.x - o.x, p.y - o.y, near_plane, far_plane)
-                                        : SSRCL_NO_SURFACE;
-  const float e = in_frame(p + 2 * o, size)
-                      ? depth_or_none(depth_in, size, p.x + 2 * o.x, p.y + 2 * o.y, near_plane, far_plane)
-                      : SSRCL_NO_SURFACE;
+  const float a = depth_or_none(depth_in, size, p.x - o.x, p.y - o.y, near_plane, far_plane);
+  const float e = depth_or_none(depth_in, size, p.x + 2 * o.x, p.y + 2 * o.y, near_plane, far_plane);
   if (a < SSRCL_NO_SURFACE && predicts(a, d, c)) return true;
   if (e < SSRCL_NO_SURFACE && predicts(e, c, d)) return true;
   return !(a < SSRCL_NO_SURFACE) && !(e < SSRCL_NO_SURFACE);
