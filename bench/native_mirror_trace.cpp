@@ -427,7 +427,8 @@ struct NativeMirrorTrace::Impl {
 
   // The min-max pyramid from setup's depths, then rows of rays in blocks traced on `threads`.
   double tracePackets(int threads, int samples, float* hits) {
-    if (!packetTraceSupported()) throw std::runtime_error("native packet trace: needs a CPU with AVX-512 (F, DQ, BW, VL)");
+    if (!packetTraceSupported())
+      throw std::runtime_error("native packet trace: needs a CPU with AVX2 (x86-64-v3) or AVX-512");
     if (proj[2][3] != -1.0f || proj[3][3] != 0.0f)
       throw std::invalid_argument("native packet trace: needs a perspective camera (1/z linear on screen)");
     auto start = Clock::now();
@@ -463,7 +464,8 @@ struct NativeMirrorTrace::Impl {
   }
 
   void setTexels(TexelFormat format) {
-    if (!packetTraceSupported()) throw std::runtime_error("native packet trace: needs a CPU with AVX-512 (F, DQ, BW, VL)");
+    if (!packetTraceSupported())
+      throw std::runtime_error("native packet trace: needs a CPU with AVX2 (x86-64-v3) or AVX-512");
 #if defined(SSRCL_PACKET_TRACE)
     if (!layoutMinMaxPyramid(w, h, format, pyramid)) throw std::invalid_argument("native packet trace: image too large");
     pyramidWords.assign(pyramid.words, 0u);
@@ -557,14 +559,28 @@ void NativeMirrorTrace::runLinearMarch(int threads) {
   parallelRows(m.h, threads, [&m](int y) { m.marchRow(y); });
 }
 
-bool packetTraceSupported() {
+// Compiled for any x86-64: the checks before any code of packet_hiz_trace's -march runs.
+PacketIsa packetTraceIsa() {
 #if defined(SSRCL_PACKET_TRACE)
-  return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
-         __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512vl");
-#else
-  return false;
+  if (__builtin_cpu_supports("x86-64-v4")) return PacketIsa::Avx512;
+  if (__builtin_cpu_supports("x86-64-v3")) return PacketIsa::Avx2;
 #endif
+  return PacketIsa::None;
 }
+bool packetTraceSupported() { return packetTraceIsa() != PacketIsa::None; }
+const char* packetIsaName(PacketIsa isa) {
+  return isa == PacketIsa::Avx512 ? "AVX-512" : isa == PacketIsa::Avx2 ? "AVX2" : "none";
+}
+int packetLanes(PacketIsa isa) { return isa == PacketIsa::Avx512 ? 16 : isa == PacketIsa::Avx2 ? 8 : 0; }
+
+#if defined(SSRCL_PACKET_TRACE)
+void tracePacketRows(const PacketFrame& frame, const MinMaxPyramid& pyramid, int samples, uint32_t seed, int y0, int y1,
+                     float* hitPoints, PacketCounters& counters) {
+  static const PacketIsa isa = packetTraceIsa();
+  if (isa == PacketIsa::Avx512) tracePacketRowsAvx512(frame, pyramid, samples, seed, y0, y1, hitPoints, counters);
+  if (isa == PacketIsa::Avx2) tracePacketRowsAvx2(frame, pyramid, samples, seed, y0, y1, hitPoints, counters);
+}
+#endif
 
 const std::vector<float>& NativeMirrorTrace::distance() const { return impl_->distance; }
 const std::vector<float>& NativeMirrorTrace::packetHitPoints() const { return impl_->packetHits; }

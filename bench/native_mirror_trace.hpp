@@ -3,9 +3,9 @@
 // per-pixel setup as kernels/setup.cl does it (view point, view normal, constant thickness, HZB
 // level 0 bounding each pixel's plane), the min-depth pyramid as kernels/hzb.cl, and a Hi-Z
 // traversal (the kernel's earlier one) with the hit test of kernels/trace.cl, in float as the
-// kernels compute: a second implementation whose hits the OpenCL ones must match. From the same setup, the min-max packet
-// trace (bench/packet_hiz_trace, depth alone, AVX-512) is the roofline: what these cores can
-// trace (bench/ssrcl_roofline, bench/ssrcl_trace_roofline, docs/BENCHMARKS.md, native roofline).
+// kernels compute: a second implementation whose hits the OpenCL ones must match. From the same setup, the min-max
+// packet trace (bench/packet_hiz_trace, depth alone, AVX-512 or AVX2) is the roofline: what these cores can trace
+// (bench/ssrcl_roofline, bench/ssrcl_trace_roofline, docs/BENCHMARKS.md, native roofline).
 #include <glm/glm.hpp>
 #include <vector>
 

@@ -1,12 +1,14 @@
 #pragma once
-// The fast half of the native roofline: a min-max Hi-Z tracer for 16 rays at once in AVX-512
-// lanes (docs/BENCHMARKS.md, native roofline). Unlike the scalar trace of native_mirror_trace (the OpenCL kernels'
-// arithmetic, their plane hit test), it reads only depth: a texel holds the range of inverse
-// depth (1/z, linear along the screen segment) its pixels cover, a pixel from 1/z to
-// 1/(z (1 + thickness)); a ray skips any cell whose range its own 1/z over the cell misses, and
-// hits the first pixel whose range it meets: what a linear march of the depth buffer finds.
-// Plain pointers and no inline code here: packet_hiz_trace.cpp is compiled for x86-64-v4 alone,
-// and nothing it defines may be merged into code the other files run on CPUs without AVX-512.
+// The fast half of the native roofline: a min-max Hi-Z tracer for packets of rays in SIMD lanes,
+// 16 in AVX-512 or 8 in AVX2, whichever the CPU has (docs/BENCHMARKS.md, native roofline). Unlike
+// the scalar trace of native_mirror_trace (the OpenCL kernels' arithmetic, their plane hit test),
+// it reads only depth: a texel holds the range of inverse depth (1/z, linear along the screen
+// segment) its pixels cover, a pixel from 1/z to 1/(z (1 + thickness)); a ray skips any cell
+// whose range its own 1/z over the cell misses, and hits the first pixel whose range it meets:
+// what a linear march of the depth buffer finds.
+// Plain pointers and no inline code here: the functions below are compiled for x86-64-v4
+// (packet_hiz_trace_avx512.cpp) or x86-64-v3 (packet_hiz_trace_avx2.cpp, packet_pyramid.cpp)
+// alone, and nothing they define may be merged into code the other files run on other CPUs.
 #include <cstddef>
 #include <cstdint>
 
@@ -61,18 +63,31 @@ struct PacketFrame {
 struct PacketCounters {
   long long rays = 0, hits = 0;
   long long laneSteps = 0;    // steps of live rays (each reads one texel)
-  long long packetSteps = 0;  // loop iterations of 16 lanes
+  long long packetSteps = 0;  // loop iterations of a packet (16 or 8 lanes)
 };
 
 // Rows [y0, y1) of the frame: each reflecting pixel's rays (samples == 0: its mirror ray;
 // otherwise `samples` GGX VNDF rays with alpha = roughness^2, hashed from pixel, sample and
-// seed), generated 16 pixels at a time, traced in a 16-lane packet whose lanes take new rays
-// once 4 are free. hitPoints (mirror rays only; may be null): per pixel 3 floats, the screen
-// point (x, y) where the ray enters the hit pixel's range and its 1/z there; -1 where no hit.
+// seed), generated a packet's width of pixels at a time, traced in packets whose lanes take new
+// rays once a few are free, in the instruction set packetTraceIsa() names. hitPoints (mirror
+// rays only; may be null): per pixel 3 floats, the screen point (x, y) where the ray enters the
+// hit pixel's range and its 1/z there; -1 where no hit.
 void tracePacketRows(const PacketFrame& frame, const MinMaxPyramid& pyramid, int samples, uint32_t seed, int y0,
                      int y1, float* hitPoints, PacketCounters& counters);
 
-// Whether this CPU runs the functions above (AVX-512 F/DQ/BW/VL, and the build compiled them).
+// The same, in 16 AVX-512 lanes or 8 AVX2 lanes: the same rays and hits, up to float rounding.
+void tracePacketRowsAvx512(const PacketFrame& frame, const MinMaxPyramid& pyramid, int samples, uint32_t seed, int y0,
+                           int y1, float* hitPoints, PacketCounters& counters);
+void tracePacketRowsAvx2(const PacketFrame& frame, const MinMaxPyramid& pyramid, int samples, uint32_t seed, int y0,
+                         int y1, float* hitPoints, PacketCounters& counters);
+
+// Which packet trace this CPU runs: AVX-512 where it is x86-64-v4, else AVX2 where it is
+// x86-64-v3, else none (or where the build did not compile them: not x86-64).
+enum class PacketIsa { None, Avx2, Avx512 };
+PacketIsa packetTraceIsa();
+const char* packetIsaName(PacketIsa isa);  // "AVX-512", "AVX2", "none"
+int packetLanes(PacketIsa isa);            // 16, 8, 0
+// Whether this CPU runs the functions above: packetTraceIsa() is not None.
 bool packetTraceSupported();
 
 }  // namespace ssrcl::bench

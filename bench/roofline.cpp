@@ -102,12 +102,14 @@ void printRoofline(std::ostream& out, const std::vector<RooflineResult>& results
         << " pixels hit by either\n";
     const double cl = r.opencl.back().medianMs, scalar = r.native.back().medianMs, simd = r.packetTrace.medianMs;
     if (!r.packets) {
-      out << "    SIMD native: not run (needs AVX-512)\n";
+      out << "    SIMD native: not run (needs AVX2 or AVX-512)\n";
       continue;
     }
-    out << "    trace, SIMD native (min-max Hi-Z, 16-ray AVX-512 packets) " << std::setprecision(2) << simd << " ms ("
-        << std::setprecision(1) << r.rays / (simd * 1e3) << " Mrays/s)  OpenCL / SIMD native " << std::setprecision(2)
-        << (simd > 0 ? cl / simd : 0.0) << "  scalar / SIMD native " << (simd > 0 ? scalar / simd : 0.0) << "\n";
+    const bench::PacketIsa isa = bench::packetTraceIsa();
+    out << "    trace, SIMD native (min-max Hi-Z, " << bench::packetLanes(isa) << "-ray " << bench::packetIsaName(isa)
+        << " packets) " << std::setprecision(2) << simd << " ms (" << std::setprecision(1) << r.rays / (simd * 1e3)
+        << " Mrays/s)  OpenCL / SIMD native " << std::setprecision(2) << (simd > 0 ? cl / simd : 0.0)
+        << "  scalar / SIMD native " << (simd > 0 ? scalar / simd : 0.0) << "\n";
     out << "    SIMD native hits equal to a half-pixel march of the depth on " << std::setprecision(4) << agreedPercent(r.packetHits) << "% of "
         << r.packetHits.hitPixels << " pixels hit by either\n";
   }

@@ -24,7 +24,7 @@ struct RooflineResult {
   StageStats depthCopy;                      // clEnqueueCopyBuffer of the depth buffer, same run
   bench::HitAgreement hits;
   // The trace again by the min-max packet trace (bench/packet_hiz_trace, 16 rays per AVX-512
-  // instruction), where the CPU has it; its hits against a half-pixel march of the depth buffer.
+  // instruction or 8 per AVX2), where the CPU has either; its hits against a half-pixel march of the depth buffer.
   bool packets = false;
   StageStats packetTrace;
   bench::HitAgreement packetHits;

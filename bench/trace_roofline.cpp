@@ -36,12 +36,14 @@ double openClTraceMs(ssrcl::Pipeline& p, long long& rays) {
 }
 
 void printNative(const char* what, double ms, const ssrcl::bench::PacketStats& s, int threads) {
+  const int lanes = ssrcl::bench::packetLanes(ssrcl::bench::packetTraceIsa());
   // CPU time per step: what a step costs while the thread runs, whatever else the machine does.
-  std::printf("  %-28s %8.1f ms  %6.2f M rays/s (%5.2f on CPU time)  %5.1f steps/ray  %4.1f%% lanes live"
-              "  %5.2f ns CPU/step  (%lld rays, %.1f%% hit; pyramid %.1f ms)\n",
-              what, ms, s.rays / (ms * 1e3), s.rays * threads / (s.cpuMs * 1e3), double(s.laneSteps) / double(s.rays),
-              100.0 * double(s.laneSteps) / (16.0 * double(s.packetSteps)), s.cpuMs * 1e6 / double(s.laneSteps),
-              s.rays, 100.0 * double(s.hits) / double(s.rays), s.pyramidMs);
+  std::printf(
+      "  %-28s %8.1f ms  %6.2f M rays/s (%5.2f on CPU time)  %5.1f steps/ray  %4.1f%% lanes live"
+      "  %5.2f ns CPU/step  (%lld rays, %.1f%% hit; pyramid %.1f ms)\n",
+      what, ms, s.rays / (ms * 1e3), s.rays * threads / (s.cpuMs * 1e3), double(s.laneSteps) / double(s.rays),
+      100.0 * double(s.laneSteps) / (lanes * double(s.packetSteps)), s.cpuMs * 1e6 / double(s.laneSteps), s.rays,
+      100.0 * double(s.hits) / double(s.rays), s.pyramidMs);
 }
 
 }  // namespace
@@ -55,7 +57,7 @@ int main(int argc, char** argv) {
   const std::string mode = argc > 7 ? argv[7] : "";
   nativeOnly = mode == "native" || mode == "quick";
   if (!ssrcl::bench::packetTraceSupported()) {
-    std::fprintf(stderr, "ssrcl_trace_roofline: the packet trace needs a CPU with AVX-512 (F, DQ, BW, VL)\n");
+    std::fprintf(stderr, "ssrcl_trace_roofline: the packet trace needs a CPU with AVX2 (x86-64-v3) or AVX-512\n");
     return 1;
   }
   const int threads = int(std::max(1u, std::thread::hardware_concurrency()));
@@ -101,8 +103,10 @@ int main(int argc, char** argv) {
                 " (per ray %.1f)\n", r + 1, clM.back(), natM.back(), clM.back() / natM.back(), clG.back(), natG.back(),
                 (clG.back() / clGlossyRays) / (natG.back() / glossyStats.rays));
   }
-  std::printf("%s %dx%d, %d threads, medians of %d rounds (native: ray generation + trace)\n", sceneName.c_str(), w, h,
-              threads, rounds);
+  const ssrcl::bench::PacketIsa isa = ssrcl::bench::packetTraceIsa();
+  std::printf("%s %dx%d, %d threads, medians of %d rounds (native: ray generation + trace, %d-lane %s packets)\n",
+              sceneName.c_str(), w, h, threads, rounds, ssrcl::bench::packetLanes(isa),
+              ssrcl::bench::packetIsaName(isa));
   std::printf("  OpenCL trace stage, mirror    %8.1f ms  %6.2f M rays/s  (%lld rays)\n", median(clM),
               clMirrorRays / (median(clM) * 1e3), clMirrorRays);
   printNative("native min-max, mirror", median(natM), mirrorStats, threads);

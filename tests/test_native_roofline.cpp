@@ -1,9 +1,9 @@
 // The OpenCL mirror pass against the native C++ implementation of the same rays
 // (bench/native_mirror_trace, the roofline of bench/ssrcl_roofline): written separately from
 // the kernels, same float arithmetic, so every pixel's hit must agree but for float ties. The
-// native min-max packet trace (bench/packet_hiz_trace, 16 rays in AVX-512 lanes, hit test on
-// depth alone) against a half-pixel linear march of the same depth buffer. The native stages
-// before the trace (bench/native_frame_stages) against the library's (bench/device_frame_stages).
+// native min-max packet trace (bench/packet_hiz_trace, 16 rays in AVX-512 lanes or 8 in AVX2,
+// whichever the CPU has; hit test on depth alone) against a half-pixel linear march of the same depth buffer. The
+// native stages before the trace (bench/native_frame_stages) against the library's (bench/device_frame_stages).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -47,7 +47,7 @@ TEST_P(NativeRoofline, HitsAgreeWithOpenCl) {
 
 // The same samples as the march (a quarter pixel off the pixel boundaries): the same hit points.
 TEST_P(NativeRoofline, PacketHitsAgreeWithLinearMarch) {
-  if (!ssrcl::bench::packetTraceSupported()) GTEST_SKIP() << "this CPU has no AVX-512";
+  if (!ssrcl::bench::packetTraceSupported()) GTEST_SKIP() << "this CPU has neither AVX2 nor AVX-512";
   ssrcl::bench::NativeMirrorTrace native(g, camera, settings);
   native.run(2);
   native.runLinearMarch(2);
@@ -62,7 +62,7 @@ TEST_P(NativeRoofline, PacketHitsAgreeWithLinearMarch) {
 // GGX samples of a surface of roughness 0 are its mirror ray (alpha clamped to 1e-4: within a
 // hundredth of a degree): 4 a pixel, hitting as the mirror rays do.
 TEST_P(NativeRoofline, GlossyRaysOfAMirrorHitAsItsMirrorRay) {
-  if (!ssrcl::bench::packetTraceSupported()) GTEST_SKIP() << "this CPU has no AVX-512";
+  if (!ssrcl::bench::packetTraceSupported()) GTEST_SKIP() << "this CPU has neither AVX2 nor AVX-512";
   ssrcl::bench::NativeMirrorTrace native(g, camera, settings);
   native.run(2);
   native.runPackets(2);
