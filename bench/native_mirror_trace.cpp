@@ -71,6 +71,7 @@ struct NativeMirrorTrace::Impl {
   MinMaxPyramid pyramid;
   std::vector<uint32_t> pyramidWords;
   PacketStats packetStats;
+  PacketIsa packetIsa = packetTraceIsa();
   std::vector<vec4> positions, normals, planes, colors;  // colors: the colour pyramid, every level
   std::vector<vec2> range, rowRuns;                        // range: the range pyramid, every level
   std::vector<unsigned char> reflects;
@@ -450,7 +451,7 @@ struct NativeMirrorTrace::Impl {
       PacketCounters c;
       const double cpuStart = threadCpuMs();
 #if defined(SSRCL_PACKET_TRACE)
-      tracePacketRows(frame, pyramid, samples, 1u, b * kRows, std::min(h, (b + 1) * kRows), hits, c);
+      tracePacketRows(packetIsa, frame, pyramid, samples, 1u, b * kRows, std::min(h, (b + 1) * kRows), hits, c);
 #endif
       const double cpu = threadCpuMs() - cpuStart;
       const std::lock_guard<std::mutex> lock(counted);
@@ -552,6 +553,7 @@ double NativeMirrorTrace::runGlossyPackets(int threads, int samplesPerPixel) {
 }
 
 void NativeMirrorTrace::setPacketTexels(TexelFormat format) { impl_->setTexels(format); }
+void NativeMirrorTrace::setPacketIsa(PacketIsa isa) { impl_->packetIsa = isa; }
 const PacketStats& NativeMirrorTrace::packetStats() const { return impl_->packetStats; }
 
 void NativeMirrorTrace::runLinearMarch(int threads) {
@@ -561,7 +563,15 @@ void NativeMirrorTrace::runLinearMarch(int threads) {
 
 // Compiled for any x86-64: the checks before any code of packet_hiz_trace's -march runs.
 PacketIsa packetTraceIsa() {
-#if defined(SSRCL_PACKET_TRACE)
+#if defined(SSRCL_PACKET_TRACE) && defined(__clang__)
+  // clang (14, 15) knows no level names, nor f16c, lzcnt or movbe, which every CPU with the rest has.
+  if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512cd") &&
+      __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512vl"))
+    return PacketIsa::Avx512;
+  if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") && __builtin_cpu_supports("bmi") &&
+      __builtin_cpu_supports("bmi2"))
+    return PacketIsa::Avx2;
+#elif defined(SSRCL_PACKET_TRACE)
   if (__builtin_cpu_supports("x86-64-v4")) return PacketIsa::Avx512;
   if (__builtin_cpu_supports("x86-64-v3")) return PacketIsa::Avx2;
 #endif
@@ -574,9 +584,8 @@ const char* packetIsaName(PacketIsa isa) {
 int packetLanes(PacketIsa isa) { return isa == PacketIsa::Avx512 ? 16 : isa == PacketIsa::Avx2 ? 8 : 0; }
 
 #if defined(SSRCL_PACKET_TRACE)
-void tracePacketRows(const PacketFrame& frame, const MinMaxPyramid& pyramid, int samples, uint32_t seed, int y0, int y1,
-                     float* hitPoints, PacketCounters& counters) {
-  static const PacketIsa isa = packetTraceIsa();
+void tracePacketRows(PacketIsa isa, const PacketFrame& frame, const MinMaxPyramid& pyramid, int samples, uint32_t seed,
+                     int y0, int y1, float* hitPoints, PacketCounters& counters) {
   if (isa == PacketIsa::Avx512) tracePacketRowsAvx512(frame, pyramid, samples, seed, y0, y1, hitPoints, counters);
   if (isa == PacketIsa::Avx2) tracePacketRowsAvx2(frame, pyramid, samples, seed, y0, y1, hitPoints, counters);
 }

@@ -69,6 +69,8 @@ class NativeMirrorTrace {
   double runGlossyPackets(int threads, int samplesPerPixel);
   // The texels the packet trace reads (docs/BENCHMARKS.md, native roofline's experiments; Half by default).
   void setPacketTexels(TexelFormat format);
+  // The lanes the packet trace runs in: packetTraceIsa() by default; AVX2 on an AVX-512 CPU too.
+  void setPacketIsa(PacketIsa isa);
   const PacketStats& packetStats() const;
   // After run(): every mirror ray marched in half-pixel steps over the depth buffer (a sample
   // hits where the ray's depth lies within [depth, depth (1 + thicknessRelative)] of a pixel

@@ -6,9 +6,12 @@
 // segment) its pixels cover, a pixel from 1/z to 1/(z (1 + thickness)); a ray skips any cell
 // whose range its own 1/z over the cell misses, and hits the first pixel whose range it meets:
 // what a linear march of the depth buffer finds.
-// Plain pointers and no inline code here: the functions below are compiled for x86-64-v4
-// (packet_hiz_trace_avx512.cpp) or x86-64-v3 (packet_hiz_trace_avx2.cpp, packet_pyramid.cpp)
-// alone, and nothing they define may be merged into code the other files run on other CPUs.
+// Plain pointers and no inline functions here: the pyramid's functions are compiled for x86-64-v3
+// (packet_pyramid.cpp), the traces for x86-64-v4 or v3 alone (packet_hiz_trace_avx512.cpp,
+// packet_hiz_trace_avx2.cpp), and nothing they define may be merged into code the other files run
+// on other CPUs; the ISA checks and the dispatch (packetTraceIsa, tracePacketRows) are compiled
+// for any x86-64 (native_mirror_trace.cpp). The structs' member initialisers make inline
+// constructors, which only baseline code runs: the v3 and v4 files take the structs by reference.
 #include <cstddef>
 #include <cstdint>
 
@@ -69,11 +72,12 @@ struct PacketCounters {
 // Rows [y0, y1) of the frame: each reflecting pixel's rays (samples == 0: its mirror ray;
 // otherwise `samples` GGX VNDF rays with alpha = roughness^2, hashed from pixel, sample and
 // seed), generated a packet's width of pixels at a time, traced in packets whose lanes take new
-// rays once a few are free, in the instruction set packetTraceIsa() names. hitPoints (mirror
-// rays only; may be null): per pixel 3 floats, the screen point (x, y) where the ray enters the
-// hit pixel's range and its 1/z there; -1 where no hit.
-void tracePacketRows(const PacketFrame& frame, const MinMaxPyramid& pyramid, int samples, uint32_t seed, int y0,
-                     int y1, float* hitPoints, PacketCounters& counters);
+// rays once a few are free, in `isa`'s lanes (one the CPU has: packetTraceIsa() or, on an
+// AVX-512 CPU, AVX2 too). hitPoints (mirror rays only; may be null): per pixel 3 floats, the
+// screen point (x, y) where the ray enters the hit pixel's range and its 1/z there; -1 where no hit.
+enum class PacketIsa { None, Avx2, Avx512 };
+void tracePacketRows(PacketIsa isa, const PacketFrame& frame, const MinMaxPyramid& pyramid, int samples, uint32_t seed,
+                     int y0, int y1, float* hitPoints, PacketCounters& counters);
 
 // The same, in 16 AVX-512 lanes or 8 AVX2 lanes: the same rays and hits, up to float rounding.
 void tracePacketRowsAvx512(const PacketFrame& frame, const MinMaxPyramid& pyramid, int samples, uint32_t seed, int y0,
@@ -81,9 +85,13 @@ void tracePacketRowsAvx512(const PacketFrame& frame, const MinMaxPyramid& pyrami
 void tracePacketRowsAvx2(const PacketFrame& frame, const MinMaxPyramid& pyramid, int samples, uint32_t seed, int y0,
                          int y1, float* hitPoints, PacketCounters& counters);
 
+// nullptr where the lane operations of that ISA's trace (expand, compress, table lookup, climb,
+// halfs, masks) give in every lane what they mean, else the name of the first that does not.
+const char* packetLaneOpsErrorAvx512();
+const char* packetLaneOpsErrorAvx2();
+
 // Which packet trace this CPU runs: AVX-512 where it is x86-64-v4, else AVX2 where it is
 // x86-64-v3, else none (or where the build did not compile them: not x86-64).
-enum class PacketIsa { None, Avx2, Avx512 };
 PacketIsa packetTraceIsa();
 const char* packetIsaName(PacketIsa isa);  // "AVX-512", "AVX2", "none"
 int packetLanes(PacketIsa isa);            // 16, 8, 0

@@ -5,6 +5,7 @@
 
 // GCC 12 warns of the undefined vectors its own intrinsics start from (GCC bug 105593).
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#pragma GCC diagnostic ignored "-Wuninitialized"
 #include <immintrin.h>
 
 #include <cstdlib>
@@ -27,6 +28,8 @@ struct Avx512 {
     return _mm512_roundscale_ps(a, P);
   }
   // min(index of the highest bit set, 2).
+  static_assert(kClimb == 2, "climb caps at 2 levels");
+  // min(index of the highest bit set, 2); -1 for 0, which a skipping lane never has (its next cell differs).
   static I climb(I a) { return _mm512_min_epi32(_mm512_sub_epi32(i(31), _mm512_lzcnt_epi32(a)), i(2)); }
   template <int P>
   static M cmp(F a, F b) {
@@ -86,5 +89,7 @@ void tracePacketRowsAvx512(const PacketFrame& frame, const MinMaxPyramid& pyrami
                            int y1, float* hitPoints, PacketCounters& counters) {
   Lanes<Avx512>::traceRows(frame, pyramid, samples, seed, y0, y1, hitPoints, counters);
 }
+
+const char* packetLaneOpsErrorAvx512() { return laneOpsError<Avx512>(); }
 
 }  // namespace ssrcl::bench

@@ -59,6 +59,18 @@ TEST_P(NativeRoofline, PacketHitsAgreeWithLinearMarch) {
   }
 }
 
+// Where the CPU has AVX-512 the AVX2 trace runs too, and traces the same rays to the same hits.
+TEST_P(NativeRoofline, Avx2PacketsHitAsAvx512Packets) {
+  if (ssrcl::bench::packetTraceIsa() != ssrcl::bench::PacketIsa::Avx512) GTEST_SKIP() << "this CPU has no AVX-512";
+  ssrcl::bench::NativeMirrorTrace native(g, camera, settings);
+  native.run(2);
+  native.runPackets(2);
+  const std::vector<float> wide = native.packetHitPoints();
+  native.setPacketIsa(ssrcl::bench::PacketIsa::Avx2);
+  native.runPackets(2);
+  expectAgreement(ssrcl::bench::compareHitPoints(native.packetHitPoints(), wide, 0.01f));
+}
+
 // GGX samples of a surface of roughness 0 are its mirror ray (alpha clamped to 1e-4: within a
 // hundredth of a degree): 4 a pixel, hitting as the mirror rays do.
 TEST_P(NativeRoofline, GlossyRaysOfAMirrorHitAsItsMirrorRay) {
@@ -132,6 +144,18 @@ TEST_P(NativeRoofline, FrameStagesAgreeWithOpenCl) {
   ssrcl::bench::NativeMirrorTrace plain(mixed, camera, asWritten);
   plain.runFrame(2);
   EXPECT_GT(differing(colors, plain.colorPyramid(), 1e-5f), 0);
+}
+
+// The lane operations of the CPU's packet trace (and of the AVX2 one on an AVX-512 CPU), every
+// mask and table index: a wrong lane moves too few hits for the tests above to see.
+TEST(PacketLanes, OperationsDoInEveryLaneWhatTheyMean) {
+  const ssrcl::bench::PacketIsa isa = ssrcl::bench::packetTraceIsa();
+  if (isa == ssrcl::bench::PacketIsa::None) GTEST_SKIP() << "this CPU has neither AVX2 nor AVX-512";
+  const char* avx2 = ssrcl::bench::packetLaneOpsErrorAvx2();
+  EXPECT_TRUE(avx2 == nullptr) << "AVX2 " << avx2;
+  if (isa != ssrcl::bench::PacketIsa::Avx512) return;
+  const char* avx512 = ssrcl::bench::packetLaneOpsErrorAvx512();
+  EXPECT_TRUE(avx512 == nullptr) << "AVX-512 " << avx512;
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, NativeRoofline, testing::Values("spheres_on_mirror", "mirror_wall", "half_sky"));
