@@ -426,10 +426,14 @@ struct NativeMirrorTrace::Impl {
     return f;
   }
 
-  // The min-max pyramid from setup's depths, then rows of rays in blocks traced on `threads`.
-  double tracePackets(int threads, int samples, float* hits) {
+  static void requirePacketTrace() {
     if (!packetTraceSupported())
       throw std::runtime_error("native packet trace: needs a CPU with AVX2 (x86-64-v3) or AVX-512");
+  }
+
+  // The min-max pyramid from setup's depths, then rows of rays in blocks traced on `threads`.
+  double tracePackets(int threads, int samples, float* hits) {
+    requirePacketTrace();
     if (proj[2][3] != -1.0f || proj[3][3] != 0.0f)
       throw std::invalid_argument("native packet trace: needs a perspective camera (1/z linear on screen)");
     auto start = Clock::now();
@@ -465,8 +469,7 @@ struct NativeMirrorTrace::Impl {
   }
 
   void setTexels(TexelFormat format) {
-    if (!packetTraceSupported())
-      throw std::runtime_error("native packet trace: needs a CPU with AVX2 (x86-64-v3) or AVX-512");
+    requirePacketTrace();
 #if defined(SSRCL_PACKET_TRACE)
     if (!layoutMinMaxPyramid(w, h, format, pyramid)) throw std::invalid_argument("native packet trace: image too large");
     pyramidWords.assign(pyramid.words, 0u);

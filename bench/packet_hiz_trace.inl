@@ -279,13 +279,16 @@ struct Lanes {
     }
     const typename L::Table bases = L::table(baseTable), shifts = L::table(shiftTable);
     // NoMemory: 16 texels of level 0's middle row, looked up by the low bits of the index.
-    const PyramidLevel& l0 = pyr.levels[0];
-    int middle[16];  // within the pyramid however small the frame
-    for (int k = 0; k < 16; ++k) {
-      const size_t at = size_t(l0.base) + (size_t(l0.height / 2) << l0.shift) + size_t(l0.width / 2 + k);
-      middle[k] = int(pyr.texels[at < pyr.words ? at : pyr.words - 1]);
+    typename L::Table texelTable{};
+    if constexpr (T == TexelFormat::NoMemory) {
+      const PyramidLevel& l0 = pyr.levels[0];
+      int middle[16];  // within the pyramid however small the frame
+      for (int k = 0; k < 16; ++k) {
+        const size_t at = size_t(l0.base) + (size_t(l0.height / 2) << l0.shift) + size_t(l0.width / 2 + k);
+        middle[k] = int(pyr.texels[at < pyr.words ? at : pyr.words - 1]);
+      }
+      texelTable = L::table(middle);
     }
-    const typename L::Table texelTable = L::table(middle);
     const I zeroI = L::i(0), one = L::i(1), lastLevel = L::i(pyr.levelCount - 1);
     const I maxSteps = L::i(maxIterations);
     const I lane = L::iota();
@@ -477,10 +480,10 @@ const char* laneOpsError() {
     for (int k = 0; k < n; ++k)
       if (lanes[k] != values[(k + shift) & 15]) return "lookup";
   }
-  for (unsigned a = 1; a < (1u << 31) && a != 0; a = a < 4096 ? a + 1 : a * 3 + 1) {
+  for (uint64_t a = 1; a < (1ull << 31); a = a < 4096 ? a + 1 : a * 3 + 1) {
     ints(L::climb(L::add(L::iota(), L::i(int(a)))), lanes);
     for (int k = 0; k < n; ++k) {
-      const unsigned v = a + unsigned(k);
+      const unsigned v = unsigned(a) + unsigned(k);
       if (lanes[k] != imin(31 - __builtin_clz(v), 2)) return "climb";
     }
   }
