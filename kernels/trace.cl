@@ -20,9 +20,6 @@
 // The Hi-Z trace skips cells the ray crosses wholly behind every hit a pixel there allows (the
 // range pyramid, back_pyramid.cl); with views such a skip records the ray's passage behind them
 // (SSRCL_RAY_BEHIND), in the frame and in the views alike.
-#ifndef SSRCL_TRACE_PACKETS
-#define SSRCL_TRACE_PACKETS 1  // packets of eight lanes stepped in turn (trace_hiz_packets)
-#endif
 #ifndef SSRCL_TRACE_ROUND
 #define SSRCL_TRACE_ROUND 64  // rays made, traced and shaded together (a work-item's, at medium)
 #endif
@@ -519,8 +516,10 @@ inline int packet_fill(Packet8* p, TraceScene* sc, const ScreenRay* rays, const 
   return next;
 }
 
-// One step of the packet's live lanes; false once none is left.
-inline bool packet_step(Packet8* p, const TraceScene* sc) {
+// One step of the packet's live lanes; false once none is left. Inlined into trace_hiz_packets's
+// loop of steps, which calls nothing else, so the compiler keeps the packet's state in registers
+// across steps where a call made it store and reload it each step (docs/BENCHMARKS.md).
+__attribute__((always_inline)) inline bool packet_step(Packet8* p, const TraceScene* sc) {
   const int top = sc->level_count - 1;
   p->active &= (p->iterations < sc->max_iterations) & (p->t <= 1.0f);
   if (!any_lane(p->active)) return false;
@@ -605,38 +604,30 @@ inline bool packet_step(Packet8* p, const TraceScene* sc) {
   return true;
 }
 
-// Traces the round's live rays in SSRCL_TRACE_PACKETS packets of eight lanes, stepped in turn. A
-// lane whose ray is done idles until SSRCL_REFILL_AT of its packet's lanes are, then they take the
-// round's next rays: with a packet's eight lanes held until all were done, half the lanes stepped
-// idle (docs/BENCHMARKS.md, "Lanes that take the next ray").
+// Traces the round's live rays in a packet of eight lanes. A lane whose ray is done idles until
+// SSRCL_REFILL_AT of the packet's lanes are, then they take the round's next rays: with the eight
+// lanes held until all were done, half the lanes stepped idle (docs/BENCHMARKS.md, "Lanes that take
+// the next ray").
 inline void trace_hiz_packets(TraceScene* sc, const ScreenRay* rays, const float3* dirs, const int* live,
                               float* t_hit_out, int2* hit_cell) {
-  Packet8 packet[SSRCL_TRACE_PACKETS];
-  int next = 0;
-  for (int k = 0; k < SSRCL_TRACE_PACKETS; ++k) {
-    const Packet8 none = {0};  // idle lanes step too: their cells and levels must be in range
-    packet[k] = none;
+  Packet8 packet = {0};  // idle lanes step too: their cells and levels must be in range
 #if SSRCL_LEVEL_PERMUTES
-    int offsets[16];
-    for (int l = 0; l < 16; ++l) offsets[l] = l < sc->level_count ? sc->levels[l].offset : 0;
-    packet[k].offsets_low = vload8(0, offsets);
-    packet[k].offsets_high = vload8(1, offsets);
+  int offsets[16];
+  for (int l = 0; l < 16; ++l) offsets[l] = l < sc->level_count ? sc->levels[l].offset : 0;
+  packet.offsets_low = vload8(0, offsets);
+  packet.offsets_high = vload8(1, offsets);
 #endif
-    packet[k].slot = -1;
-    next = packet_fill(&packet[k], sc, rays, dirs, live, next, t_hit_out, hit_cell);
-  }
-  // A step can end a packet's last rays (their steps or their screen run out) while rays remain.
-  for (bool stepped = true; stepped || next < SSRCL_TRACE_ROUND;) {
-    stepped = false;
-    for (int k = 0; k < SSRCL_TRACE_PACKETS; ++k) {
-      const int8 idle = packet[k].active == 0;
-      if (next < SSRCL_TRACE_ROUND && count_lanes(idle) >= SSRCL_REFILL_AT)
-        next = packet_fill(&packet[k], sc, rays, dirs, live, next, t_hit_out, hit_cell);
-      stepped |= packet_step(&packet[k], sc);
+  packet.slot = -1;
+  int next = packet_fill(&packet, sc, rays, dirs, live, 0, t_hit_out, hit_cell);
+  // Steps until the idle lanes are to be refilled or none is live (its steps or its screen run out).
+  for (;;) {
+    while (!(next < SSRCL_TRACE_ROUND && count_lanes(packet.active == 0) >= SSRCL_REFILL_AT) &&
+           packet_step(&packet, sc)) {
     }
+    if (next == SSRCL_TRACE_ROUND) break;
+    next = packet_fill(&packet, sc, rays, dirs, live, next, t_hit_out, hit_cell);
   }
-  for (int k = 0; k < SSRCL_TRACE_PACKETS; ++k)
-    packet_end(&packet[k], sc, packet[k].slot >= 0, t_hit_out, hit_cell);
+  packet_end(&packet, sc, packet.slot >= 0, t_hit_out, hit_cell);
 }
 
 // Fixed steps of `step_pixels` along the major screen axis, each tested with hit_pixel against
