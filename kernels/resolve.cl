@@ -126,8 +126,8 @@ inline TapSums resolve_taps(__global const float4* ray_hit, __global const float
 // n / d for 0 <= n < 2^22 and d in 1..4, without integer division (x86 has none in vectors):
 // n times the float reciprocal of d, which is exact or (1/3) rounded up, truncated (checked for
 // every such n and d). One reciprocal serves a neighbour's three quotients.
-#if SSRCL_RESOLVE_RAY_STRIDE > 4
-#error "resolve_accumulate's quotient() divides by at most 4"
+#if SSRCL_RESOLVE_RAY_STRIDE > 4 || (SSRCL_RESOLVE_RAY_STRIDE & (SSRCL_RESOLVE_RAY_STRIDE - 1))
+#error "resolve_accumulate's quotient() divides by at most 4, its one-ray shares by a power of two"
 #endif
 inline int8 quotient(int8 n, float8 inv_d) { return convert_int8(convert_float8(n) * inv_d); }
 
@@ -228,29 +228,42 @@ __kernel void resolve_accumulate(ResolveParams params, __global const int* tile_
       for (int dx = -reuse_radius; dx <= reuse_radius; ++dx) {
         const bool own = dx == 0 && dy == 0;
         const int8 qx = x + dx, q = qy * size.x + clamp(qx, 0, size.x - 1);
-        const int8 count = min((int8)(pixel_rays[q.s0], pixel_rays[q.s1], pixel_rays[q.s2], pixel_rays[q.s3],
-                                      pixel_rays[q.s4], pixel_rays[q.s5], pixel_rays[q.s6], pixel_rays[q.s7]) -
-                                   first_sample,
-                               batch_size);
+        // All eight neighbours in the frame lie side by side: vector loads (as the filter's taps).
+        const int first_q = qy * size.x + x0 + dx;
+        const bool inside = x0 + dx >= 0 && x0 + dx + 7 < size.x;
+        const int8 rays_q = inside ? vload8(0, pixel_rays + first_q)
+                                   : (int8)(pixel_rays[q.s0], pixel_rays[q.s1], pixel_rays[q.s2], pixel_rays[q.s3],
+                                            pixel_rays[q.s4], pixel_rays[q.s5], pixel_rays[q.s6], pixel_rays[q.s7]);
+        const int8 count = min(rays_q - first_sample, batch_size);
         int8 similar = (int8)(-1);
         // Neighbours must be the same surface for their rays to stand for this pixel's: similar
         // depth (relative) and normal.
         if (!own) {
-          RecordLanes n_q = record_lanes(normals, q);
-          float8 depth_q = record_lanes(positions, q).w;
+          RecordLanes n_q = inside ? row_record_lanes(normals, first_q) : record_lanes(normals, q);
+          float8 depth_q = inside ? row_record_lanes(positions, first_q).w : record_lanes(positions, q).w;
           similar = fabs(depth_q - f.depth) <= 0.05f * f.depth
                     && dot_lanes(f.nx, f.ny, f.nz, n_q.x, n_q.y, n_q.z) >= 0.9f;
         }
         const int8 valid = taps && qx >= 0 && qx < size.x && count > 0 && similar;
+        if (!any_lane(valid)) continue;
         // Own rays all; of a neighbour's, one of `parts` consecutive shares (consecutive rays
         // share cache lines), picked by a phase that steps by one to the next pixel in x and by
         // two in y, so neighbouring pixels take different shares of q and one pixel's neighbours
         // cover the shares evenly (a rank-1 lattice).
-        const int8 parts = own ? (int8)(1) : select((int8)(1), min(count, SSRCL_RESOLVE_RAY_STRIDE), valid);
-        const float8 inv_parts = 1.0f / convert_float8(parts);
-        const int8 phase = x + 2 * y + 3 * qx + qy, part = phase - parts * quotient(phase, inv_parts);
-        const int8 start = select((int8)(0), quotient(part * count, inv_parts), valid),
-                   end = select((int8)(0), quotient((part + 1) * count, inv_parts), valid), base = q * batch_size;
+        const int8 phase = x + 2 * y + 3 * qx + qy, base = q * batch_size;
+        int8 start, end;
+        if (!own && count_lanes(valid && count == SSRCL_RESOLVE_RAY_STRIDE) == count_lanes(valid)) {
+          // Each valid lane's share is one ray, `phase mod stride`: what the quotients below give,
+          // without their chain of conversions (a third of the resolve's time at medium).
+          start = select((int8)(0), phase & (SSRCL_RESOLVE_RAY_STRIDE - 1), valid);
+          end = select((int8)(0), start + 1, valid);
+        } else {
+          const int8 parts = own ? (int8)(1) : select((int8)(1), min(count, SSRCL_RESOLVE_RAY_STRIDE), valid);
+          const float8 inv_parts = 1.0f / convert_float8(parts);
+          const int8 part = phase - parts * quotient(phase, inv_parts);
+          start = select((int8)(0), quotient(part * count, inv_parts), valid);
+          end = select((int8)(0), quotient((part + 1) * count, inv_parts), valid);
+        }
         const int longest = max_lane(end - start);
         // Groups of four consecutive rays of each share, as a pixel's own taps were taken: a
         // group's sum is (t0 + t1) + (t2 + t3), a missing tap adding nothing.
