@@ -29,7 +29,7 @@
 // each pixel's F0 from the render's base_color / metallic AOVs where it has them, as `ssrcl trace`
 // does with them loaded; 0: without, specular colour alone),
 // hitroughness, spp, fullrays (fullRaysRoughness: smoother pixels get proportionally fewer rays),
-// reuse, denoise, prefilter, edges (edge colours), tracer, step, seed,
+// reuse, denoise, separable (1: the filter in two passes), prefilter, edges (edge colours), tracer, step, seed,
 // stride, iterations, fade (the edge fade, a fraction of the smaller side), form (incident, the
 // default: our pass times E(F0 = 1) here; glossy-pass: the
 // pass `ssrcl trace --output-form glossy-pass` writes, compared with Cycles as it is, F0 from the
@@ -137,6 +137,8 @@ Config parseConfig(const std::string& spec) {
       s.reuseRadius = std::stoi(value);
     } else if (key == "denoise") {
       s.denoise = value == "1";
+    } else if (key == "separable") {
+      s.separableDenoise = value == "1";
     } else if (key == "prefilter") {
       s.prefilter = value == "1";
     } else if (key == "edges") {

@@ -2,6 +2,9 @@
 // with roughness (rougher lobes vary slowly), stopped where a neighbour leaves the pixel's plane or
 // its normal turns, so reflections do not bleed across objects. Mirror-like and untraced pixels pass through unchanged. Runs over
 // the listed tiles: pixels that reflect lie in them, and it reads no others.
+// Over the square of taps (params.axes 3), or separably: a pass along y, then one along x over
+// its output (2r + 1 taps a pass where the square takes (2r + 1)^2), each tap weighed as in the
+// square; host/pipeline/filter_stage.hpp.
 //
 // A work-item filters one row of a tile, one pixel to a float8 lane (as resolve_accumulate does):
 // PoCL does not vectorise work-items whose loops differ in length, and each pixel's radius is its
@@ -76,10 +79,11 @@ __kernel void denoise(FilterParams params, __global const int* tile_list, __glob
   const int8 x = x0 + (int8)(0, 1, 2, 3, 4, 5, 6, 7);
   const float8 zero = (float8)(0.0f);
   float8 sum_r = zero, sum_g = zero, sum_b = zero, sum_a = zero, weights = zero, dist_sum = zero, dist_weights = zero;
-  for (int dy = -widest; dy <= widest; ++dy) {
+  const int reach_x = params.axes & 1 ? widest : 0, reach_y = params.axes & 2 ? widest : 0;
+  for (int dy = -reach_y; dy <= reach_y; ++dy) {
     const int qy = y + dy;
     if (qy < 0 || qy >= size.y) continue;
-    for (int dx = -widest; dx <= widest; ++dx) {
+    for (int dx = -reach_x; dx <= reach_x; ++dx) {
       const int8 qx = x + dx, q = qy * size.x + clamp(qx, 0, size.x - 1);
       int8 take = lane_radius >= (int)max(abs(dx), abs(dy)) && qx >= 0 && qx < size.x;
       if (!any_lane(take)) continue;

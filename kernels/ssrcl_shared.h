@@ -169,6 +169,7 @@ typedef struct {
 // kernels/filter.cl
 typedef struct {
   FrameConstants frame;
+  ssrcl_int axes;  // 1: the taps along x only, 2: along y only, 3: the square (both)
 } FilterParams;
 
 // kernels/environment.cl (roughness mapping is a program define)

@@ -70,6 +70,7 @@ void bindSettings(py::module_& m) {
       .def_readwrite("tracer", &TraceSettings::tracer)
       .def_readwrite("linearStepPixels", &TraceSettings::linearStepPixels)
       .def_readwrite("denoise", &TraceSettings::denoise)
+      .def_readwrite("separableDenoise", &TraceSettings::separableDenoise)
       .def_readwrite("traceStride", &TraceSettings::traceStride)
       .def_readwrite("countWork", &TraceSettings::countWork)
       .def_readwrite("classifyWork", &TraceSettings::classifyWork)

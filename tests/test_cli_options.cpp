@@ -86,7 +86,9 @@ struct SettingsOption {
 // The settings each option must reach. Fields not listed must keep the baseline's value.
 const std::vector<SettingsOption>& settingsOptions() {
   static const std::vector<SettingsOption> options = {
-      {"--quality draft", {{"samplesPerPixel", 2}, {"traceStride", 2}, {"maxIterations", 64}}, true},
+      {"--quality draft",
+       {{"samplesPerPixel", 2}, {"traceStride", 2}, {"maxIterations", 64}, {"separableDenoise", true}},
+       true},
       {"--quality high", {{"samplesPerPixel", 16}}, true},
       {"--quality reference",
        {{"tracer", "linear"},
@@ -113,6 +115,8 @@ const std::vector<SettingsOption>& settingsOptions() {
       {"--no-denoise", {{"denoise", false}}, true},  // the filter is on by default
       {"--denoise", {{"denoise", true}}, true, "--no-denoise"},
       {"--quality high --no-denoise", {{"denoise", false}}, true, "--quality high"},
+      {"--separable-denoise", {{"separableDenoise", true}}, true},
+      {"--quality draft --square-denoise", {{"separableDenoise", false}}, true, "--quality draft"},
       {"--max-roughness 0.2", {{"maxRoughness", 0.2}}, true},
       {"--mirror-roughness 0.5", {{"mirrorRoughness", 0.5}}, true},
       {"--roughness-mapping linear", {{"roughnessMapping", "linear"}}, true},

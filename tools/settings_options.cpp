@@ -24,6 +24,7 @@ TraceSettings SettingsOptions::resolve() const {
   apply(s.prefilter, prefilter);
   apply(s.edgeColors, edgeColors);
   apply(s.denoise, denoise);
+  apply(s.separableDenoise, separableDenoise);
   if (roughnessMapping)
     s.roughnessMapping = *roughnessMapping == "linear" ? RoughnessMapping::Linear : RoughnessMapping::Squared;
   if (tracer) selectTracer(s, *tracer);
@@ -87,6 +88,13 @@ void addSettingsOptions(CLI::App& cmd, SettingsOptions& o) {
       ->group(q);
   cmd.add_flag_callback(
          "--no-denoise", [&o] { o.denoise = false; }, "No spatial filter")
+      ->group(q);
+  cmd.add_flag_callback(
+         "--separable-denoise", [&o] { o.separableDenoise = true; },
+         "The filter in two passes, along y then x (draft's; a fraction of the square's taps)")
+      ->group(q);
+  cmd.add_flag_callback(
+         "--square-denoise", [&o] { o.separableDenoise = false; }, "The filter over the square of taps")
       ->group(q);
 
   const char* m = "Surfaces";

@@ -16,7 +16,7 @@ struct SettingsOptions {
   std::optional<int> maxIterations, spp, reuseRadius, traceStride;
   std::optional<uint32_t> seed;
   std::optional<std::string> roughnessMapping, tracer, thicknessModel;
-  std::optional<bool> prefilter, edgeColors, denoise;
+  std::optional<bool> prefilter, edgeColors, denoise, separableDenoise;
   std::string environment;  // --environment FILE.exr: misses take this HDR's radiance
   std::optional<float> environmentRotation, environmentIntensity;
 

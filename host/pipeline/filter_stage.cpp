@@ -4,14 +4,18 @@
 
 namespace ssrcl::detail {
 
-const StageAccess FilterStage::access{"denoise",
-                                      {Role::TileList, Role::Positions, Role::Normals, Role::PixelRays,
-                                       Role::ResolvedRgba, Role::ResolvedDistance},
-                                      {Role::Reflection, Role::Distance}};
+const StageAccess FilterStage::access{
+    "denoise",
+    {Role::TileList, Role::Positions, Role::Normals, Role::PixelRays, Role::ResolvedRgba, Role::ResolvedDistance},
+    {Role::Reflection, Role::Distance, Role::ResolvedRgba, Role::ResolvedDistance}};
 
 void FilterStage::configure(Device::Impl& device, const TraceSettings& s) {
   enabled_ = s.denoise;
-  if (enabled_) kernel_ = cl::Kernel(device.program({"ssrcl_shared.h", "common.cl", "filter.cl"}), "denoise");
+  separable_ = s.denoise && s.separableDenoise;
+  if (!enabled_) return;
+  const cl::Program& program = device.program({"ssrcl_shared.h", "common.cl", "filter.cl"});
+  kernel_ = cl::Kernel(program, "denoise");
+  if (separable_) second_ = cl::Kernel(program, "denoise");
 }
 
 void FilterStage::plan(FrameResources& resources, DeviceBuffers& buffers, const FrameShape& frame) {
@@ -21,16 +25,27 @@ void FilterStage::plan(FrameResources& resources, DeviceBuffers& buffers, const 
 void FilterStage::bind(const FrameResources& resources) {
   if (!enabled_) return;
   auto in = [&](Role role) { return resources.read(access, role); };
-  bindArgs(kernel_, 1, "tile_list, positions, normals, pixel_rays, in_rgba, in_distance, out_rgba, out_distance",
-           in(Role::TileList), in(Role::Positions), in(Role::Normals), in(Role::PixelRays), in(Role::ResolvedRgba),
-           in(Role::ResolvedDistance), resources.write(access, Role::Reflection),
-           resources.write(access, Role::Distance));
+  auto out = [&](Role role) { return resources.write(access, role); };
+  auto bindPass = [&](cl::Kernel& kernel, Role rgba, Role distance, Role outRgba, Role outDistance) {
+    bindArgs(kernel, 1, "tile_list, positions, normals, pixel_rays, in_rgba, in_distance, out_rgba, out_distance",
+             in(Role::TileList), in(Role::Positions), in(Role::Normals), in(Role::PixelRays), in(rgba), in(distance),
+             out(outRgba), out(outDistance));
+  };
+  if (!separable_) {
+    bindPass(kernel_, Role::ResolvedRgba, Role::ResolvedDistance, Role::Reflection, Role::Distance);
+    return;
+  }
+  bindPass(kernel_, Role::Reflection, Role::Distance, Role::ResolvedRgba, Role::ResolvedDistance);
+  bindPass(second_, Role::ResolvedRgba, Role::ResolvedDistance, Role::Reflection, Role::Distance);
 }
 
 void FilterStage::enqueue(cl::CommandQueue& q, const FrameConstants& frame, int tiles, StageEvents& events) {
   if (!enabled_ || tiles == 0) return;
-  kernel_.setArg(0, FilterParams{frame});
+  kernel_.setArg(0, FilterParams{frame, separable_ ? 2 : 3});
   enqueueTileRows(q, kernel_, tiles, newEvent(events, "denoise"));
+  if (!separable_) return;
+  second_.setArg(0, FilterParams{frame, 1});
+  enqueueTileRows(q, second_, tiles, newEvent(events, "denoise"));
 }
 
 }  // namespace ssrcl::detail

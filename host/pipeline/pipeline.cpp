@@ -194,8 +194,8 @@ void Pipeline::Impl::plan() {
   backPyramid.bind(resources);
   colors.bind(resources);
   trace.bind(resources);
-  // With the filter on, the resolve writes to an intermediate the filter reads.
-  resolve.bind(resources, filter.enabled());
+  // With the square filter on, the resolve writes to an intermediate the filter reads.
+  resolve.bind(resources, filter.readsResolved());
   filter.bind(resources);
   environmentFill.bind(d.queue, resources);
   viewStage.bind(d.queue, camera, views, resources);

@@ -10,6 +10,7 @@ TraceSettings qualityPreset(const std::string& name) {
     s.samplesPerPixel = 2;
     s.traceStride = 2;
     s.maxIterations = 64;
+    s.separableDenoise = true;
     return s;
   }
   if (name == "high") {

@@ -46,6 +46,7 @@ std::string settingsJson(const TraceSettings& s) {
   j["tracer"] = name(s.tracer);
   j["linearStepPixels"] = decimal(s.linearStepPixels);
   j["denoise"] = s.denoise;
+  j["separableDenoise"] = s.separableDenoise;
   j["traceStride"] = s.traceStride;
   j["countWork"] = s.countWork;
   j["classifyWork"] = s.classifyWork;

@@ -26,8 +26,8 @@ auto fields(const TraceSettings& s) {
                   s.thicknessMaxRelative, s.maxIterations, s.maxRoughness, s.edgeFade, s.viewRadianceCap,
                   s.constantRoughness, s.glossyHitRoughness, s.samplesPerPixel, s.fullRaysRoughness, s.seed,
                   s.roughnessMapping, s.mirrorRoughness, s.reuseRadius, s.prefilter, s.edgeColors, s.tracer,
-                  s.linearStepPixels, s.denoise, s.traceStride, s.countWork, s.classifyWork, s.environmentRotation,
-                  s.environmentIntensity);
+                  s.linearStepPixels, s.denoise, s.separableDenoise, s.traceStride, s.countWork, s.classifyWork,
+                  s.environmentRotation, s.environmentIntensity);
 }
 }  // namespace
 

@@ -116,6 +116,10 @@ struct TraceSettings {
   // neighbour's rays). On in every preset but "reference": it gains on both corpora, procedural
   // and real (docs/BENCHMARKS.md, "Quality presets").
   bool denoise = true;
+  // The filter as two passes, along y then along x (2r + 1 taps a pass against the square's
+  // (2r + 1)^2): draft's, where the filter was 60% of a 1080p frame's device time; within 0.03 dB
+  // of the square on both corpora (docs/BENCHMARKS.md, "A separable filter for draft").
+  bool separableDenoise = false;
   // 2: glossy pixels trace in one pixel of each 2x2 block (a quarter of the rays) and the others
   // resolve from their neighbours' rays (needs reuseRadius >= 1). Mirror pixels always trace.
   int traceStride = 1;
